@@ -1,0 +1,152 @@
+# Helpers for walkgen's own tests, benchmarks and examples (never used by consumers).
+#
+#   walkgen_add_test(NAME <name> SOURCES <files...> [LIBS <libs...>] [LABELS <labels...>])
+#   walkgen_add_benchmark(NAME <name> SOURCES <files...> [LIBS <libs...>])
+#   walkgen_add_example(NAME <name> SOURCES <files...> [LIBS <libs...>] [ARGS <args...>])
+#   walkgen_add_compile_fail_test(NAME <name> SOURCE <file> REGEX <regex>)
+#
+# Relative SOURCES are relative to the calling CMakeLists.txt. Every target gets our warning flags
+# (never the INTERFACE library itself) and can include "support/..." from tests/.
+include_guard(GLOBAL)
+
+set(_walkgen_helpers_dir "${CMAKE_CURRENT_LIST_DIR}")
+
+# Warnings for our own targets only. -Wconversion/-Wshadow are too noisy inside Eigen.
+function(walkgen_target_warnings target)
+  if(MSVC)
+    target_compile_options(${target} PRIVATE /W4 /permissive-)
+  else()
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Werror=return-type)
+  endif()
+endfunction()
+
+function(_walkgen_check_args fn)
+  if(NOT _arg_NAME)
+    message(FATAL_ERROR "${fn}: NAME is required")
+  endif()
+  if(_arg_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "${fn}(${_arg_NAME}): unknown arguments: ${_arg_UNPARSED_ARGUMENTS}")
+  endif()
+endfunction()
+
+# A GoogleTest executable; each TEST() becomes one ctest through gtest_discover_tests.
+# Default label: "unit".
+function(walkgen_add_test)
+  cmake_parse_arguments(_arg "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  _walkgen_check_args(walkgen_add_test)
+  if(NOT _arg_SOURCES)
+    message(FATAL_ERROR "walkgen_add_test(${_arg_NAME}): SOURCES is required")
+  endif()
+  if(NOT _arg_LABELS)
+    set(_arg_LABELS unit)
+  endif()
+  if(NOT TARGET GTest::gtest_main AND NOT TARGET GTest::Main)
+    find_package(GTest REQUIRED)
+  endif()
+  include(GoogleTest)
+  set(_gtest_main GTest::gtest_main)
+  if(NOT TARGET GTest::gtest_main)  # FindGTest of CMake < 3.20 only defines GTest::Main
+    set(_gtest_main GTest::Main)
+  endif()
+
+  add_executable(${_arg_NAME} ${_arg_SOURCES})
+  target_link_libraries(${_arg_NAME} PRIVATE walkgen::walkgen ${_gtest_main} ${_arg_LIBS})
+  if(TARGET GTest::gmock)  # matchers in tests/support may use gmock
+    target_link_libraries(${_arg_NAME} PRIVATE GTest::gmock)
+  endif()
+  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
+  target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  walkgen_target_warnings(${_arg_NAME})
+
+  # ctest names are "<executable>.<Suite>.<Test>", unique across executables.
+  gtest_discover_tests(${_arg_NAME}
+    TEST_PREFIX "${_arg_NAME}."
+    TEST_LIST ${_arg_NAME}_TESTS
+    DISCOVERY_TIMEOUT 60)
+
+  # Labels are set by a ctest include file that runs after discovery: gtest_discover_tests'
+  # PROPERTIES flattens a list value, so "LABELS a;b" would not survive it.
+  set(_labels_file "${CMAKE_CURRENT_BINARY_DIR}/${_arg_NAME}_labels.cmake")
+  file(WRITE "${_labels_file}"
+       "if(${_arg_NAME}_TESTS)\n"
+       "  set_tests_properties(\${${_arg_NAME}_TESTS} PROPERTIES LABELS \"${_arg_LABELS}\")\n"
+       "endif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${_labels_file}")
+endfunction()
+
+# A Google Benchmark executable (run it by hand for numbers) plus one quick ctest
+# "<name>_smoke" (label "benchmark") that runs every benchmark once, briefly.
+function(walkgen_add_benchmark)
+  cmake_parse_arguments(_arg "" "NAME" "SOURCES;LIBS" ${ARGN})
+  _walkgen_check_args(walkgen_add_benchmark)
+  if(NOT _arg_SOURCES)
+    message(FATAL_ERROR "walkgen_add_benchmark(${_arg_NAME}): SOURCES is required")
+  endif()
+  find_package(benchmark REQUIRED)  # also sets benchmark_VERSION in this scope
+
+  add_executable(${_arg_NAME} ${_arg_SOURCES})
+  target_link_libraries(${_arg_NAME}
+    PRIVATE walkgen::walkgen benchmark::benchmark benchmark::benchmark_main ${_arg_LIBS})
+  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
+  target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  walkgen_target_warnings(${_arg_NAME})
+
+  # Google Benchmark < 1.8 parses --benchmark_min_time as plain seconds; 1.8 wants a unit suffix.
+  set(_min_time 0.01)
+  if(DEFINED benchmark_VERSION AND benchmark_VERSION VERSION_GREATER_EQUAL 1.8)
+    set(_min_time 0.01s)
+  endif()
+  add_test(NAME ${_arg_NAME}_smoke
+           COMMAND ${_arg_NAME} --benchmark_min_time=${_min_time} --benchmark_filter=.)
+  set_tests_properties(${_arg_NAME}_smoke PROPERTIES LABELS benchmark TIMEOUT 300)
+endfunction()
+
+# An example program plus a ctest "example_<name>" (label "example") that runs it with ARGS in
+# ${CMAKE_BINARY_DIR}/example_output, where its CSV/PNG files land.
+function(walkgen_add_example)
+  cmake_parse_arguments(_arg "" "NAME" "SOURCES;LIBS;ARGS" ${ARGN})
+  _walkgen_check_args(walkgen_add_example)
+  if(NOT _arg_SOURCES)
+    message(FATAL_ERROR "walkgen_add_example(${_arg_NAME}): SOURCES is required")
+  endif()
+
+  add_executable(${_arg_NAME} ${_arg_SOURCES})
+  target_link_libraries(${_arg_NAME} PRIVATE walkgen::walkgen ${_arg_LIBS})
+  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
+  target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  walkgen_target_warnings(${_arg_NAME})
+
+  set(_out "${CMAKE_BINARY_DIR}/example_output")
+  file(MAKE_DIRECTORY "${_out}")
+  add_test(NAME example_${_arg_NAME} COMMAND ${_arg_NAME} ${_arg_ARGS} WORKING_DIRECTORY "${_out}")
+  set_tests_properties(example_${_arg_NAME} PROPERTIES LABELS example TIMEOUT 300)
+endfunction()
+
+# A ctest that passes only if compiling SOURCE fails AND the compiler output matches REGEX
+# (e.g. a static_assert's "walkgen: ..." sentence). The object library <name> is excluded from
+# the normal build; the test builds it on its own with `cmake --build`.
+function(walkgen_add_compile_fail_test)
+  cmake_parse_arguments(_arg "" "NAME;SOURCE;REGEX" "" ${ARGN})
+  _walkgen_check_args(walkgen_add_compile_fail_test)
+  if(NOT _arg_SOURCE OR NOT _arg_REGEX)
+    message(FATAL_ERROR "walkgen_add_compile_fail_test(${_arg_NAME}): SOURCE and REGEX are required")
+  endif()
+
+  add_library(${_arg_NAME} OBJECT "${_arg_SOURCE}")
+  target_link_libraries(${_arg_NAME} PRIVATE walkgen::walkgen)
+  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
+  set_target_properties(${_arg_NAME} PROPERTIES EXCLUDE_FROM_ALL TRUE
+                                                EXCLUDE_FROM_DEFAULT_BUILD TRUE)
+  walkgen_target_warnings(${_arg_NAME})
+
+  add_test(NAME ${_arg_NAME}
+           COMMAND "${CMAKE_COMMAND}"
+                   "-DBUILD_DIR=${CMAKE_BINARY_DIR}"
+                   "-DTARGET=${_arg_NAME}"
+                   "-DCONFIG=$<CONFIG>"
+                   "-DREGEX=${_arg_REGEX}"
+                   -P "${_walkgen_helpers_dir}/run_compile_fail.cmake")
+  # Two builds in one build tree at once would fight over the generator's state files.
+  set_tests_properties(${_arg_NAME} PROPERTIES
+    LABELS compile_fail TIMEOUT 300 RESOURCE_LOCK walkgen_build_tree)
+endfunction()

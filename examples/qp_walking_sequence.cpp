@@ -1,0 +1,168 @@
+// Solves the walking-like QP sequence of thesis §2.2 with walkgen's dense QP solver and plots the
+// walk: CoM, ZMP and footsteps, plus the solve time of each tick.
+//
+// Each tick builds the linearised NMPC QP (68 variables, 106 rows: LIPM preview eq. 2.36–2.42,
+// ZMP-in-foot rows 2.68, footstep feasibility 2.71, relative yaw limits 2.75–2.77; built in
+// tests/support/walking_qp.hpp), solves it warm-started from the previous active set, applies the
+// first jerks and advances. The command changes every few seconds (Seq::demo_command): straight,
+// curved, sideways, turn on the spot. Issue 3's generator replaces this with the full NMPC.
+//
+//   qp_walking_sequence [--ticks N] [--csv FILE] [--png FILE] [--no-plot] [--quiet]
+//
+// Writes FILE.csv (one row per tick) and, when /usr/bin/python3 has matplotlib, FILE.png.
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "support/walking_qp.hpp"
+#include "walkgen/qp/dense_qp.hpp"
+
+namespace {
+
+using Seq = walkgen_test::WalkingQpSequence;
+
+struct Options {
+  int ticks = 240;
+  std::string csv = "qp_walking_sequence.csv";
+  std::string png = "qp_walking_sequence.png";
+  bool plot = true;
+  bool quiet = false;
+};
+
+void usage(const char* argv0) {
+  std::cerr << "usage: " << argv0
+            << " [--ticks N (1..100000, default 240)] [--csv FILE] [--png FILE] [--no-plot]"
+               " [--quiet]\n";
+}
+
+bool parse(int argc, char** argv, Options* opt) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    if (a == "--quiet") {
+      opt->quiet = true;
+    } else if (a == "--no-plot") {
+      opt->plot = false;
+    } else if (a == "--ticks") {
+      const char* v = value();
+      char* end = nullptr;
+      const long n = v ? std::strtol(v, &end, 10) : 0;
+      if (!v || *end != '\0' || n < 1 || n > 100000) {
+        std::cerr << "error: --ticks expects an integer in 1..100000, got '" << (v ? v : "")
+                  << "'\n";
+        return false;
+      }
+      opt->ticks = static_cast<int>(n);
+    } else if (a == "--csv" || a == "--png") {
+      const char* v = value();
+      if (!v) {
+        std::cerr << "error: " << a << " expects a file name\n";
+        return false;
+      }
+      (a == "--csv" ? opt->csv : opt->png) = v;
+    } else if (a == "--help" || a == "-h") {
+      usage(argv[0]);
+      std::exit(0);
+    } else {
+      std::cerr << "error: unknown argument '" << a << "'\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  if (!parse(argc, argv, &opt)) {
+    usage(argv[0]);
+    return 2;
+  }
+
+  Seq seq;
+  walkgen::DenseQp<double> qp(Seq::kVars, Seq::kRows);
+  const double T = seq.lipm().T, h_over_g = seq.lipm().com_height / seq.lipm().gravity;
+
+  std::ofstream csv(opt.csv);
+  if (!csv) {
+    std::cerr << "error: cannot write " << opt.csv << "\n";
+    return 1;
+  }
+  csv << "t,cmd_vx,cmd_vy,cmd_wz,com_x,com_y,zmp_x,zmp_y,support_x,support_y,support_yaw,"
+         "left_support,next_step_x,next_step_y,status,iterations,active_set,warm_started,solve_"
+         "us\n";
+  csv.precision(9);
+
+  std::vector<double> solve_us;
+  solve_us.reserve(static_cast<std::size_t>(opt.ticks));
+  if (!opt.quiet) {
+    std::cout << "walkgen QP walking sequence: " << Seq::kVars << " variables, " << Seq::kRows
+              << " constraint rows, " << opt.ticks << " ticks of " << T << " s\n";
+  }
+  for (int tick = 0; tick < opt.ticks; ++tick) {
+    const Seq::Command cmd = Seq::demo_command(tick);
+    const walkgen_test::WalkingQp w = seq.build(cmd);
+    // init() factorises H and validates the data; solve() starts from the last active set.
+    const auto start = std::chrono::steady_clock::now();
+    qp.init(w.H, w.g, w.A, w.lb, w.ub);
+    const auto& r = qp.solve();
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    if (r.status != walkgen::QpStatus::solved) {
+      std::cerr << "error: tick " << tick << ": QP " << walkgen::to_string(r.status) << ": "
+                << r.message << "\n";
+      return 1;
+    }
+    solve_us.push_back(us);
+
+    // ZMP of the current state (eq. 2.23: z = c − c_z/g c̈), then apply the first jerks.
+    const double zx = seq.com_x()[0] - h_over_g * seq.com_x()[2];
+    const double zy = seq.com_y()[0] - h_over_g * seq.com_y()[2];
+    csv << tick * T << ',' << cmd.vx << ',' << cmd.vy << ',' << cmd.wz << ',' << seq.com_x()[0]
+        << ',' << seq.com_y()[0] << ',' << zx << ',' << zy << ',' << seq.support()[0] << ','
+        << seq.support()[1] << ',' << seq.support()[2] << ',' << seq.left_support() << ','
+        << r.x[Seq::kN] << ',' << r.x[2 * Seq::kN + Seq::kSteps] << ','
+        << walkgen::to_string(r.status) << ',' << r.iterations << ',' << r.active_set_size << ','
+        << r.warm_started << ',' << us << '\n';
+    if (!opt.quiet && (tick + 1) % 40 == 0) {
+      std::printf(
+          "  t = %5.1f s  cmd (%.2f, %.2f, %.2f)  CoM (%6.3f, %6.3f)  %2d active, %2d "
+          "iterations, %.1f us\n",
+          (tick + 1) * T, cmd.vx, cmd.vy, cmd.wz, seq.com_x()[0], seq.com_y()[0], r.active_set_size,
+          r.iterations, us);
+    }
+    seq.advance(r.x);
+  }
+  csv.close();
+
+  std::vector<double> sorted = solve_us;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[sorted.size() / 2], worst = sorted.back();
+  std::printf(
+      "solved %d QPs: init + warm solve median %.1f us, max %.1f us (wall clock of this "
+      "run; see benchmarks/bench_qp for measurements)\n",
+      opt.ticks, median, worst);
+  std::printf("final CoM (%.3f, %.3f) m; wrote %s\n", seq.com_x()[0], seq.com_y()[0],
+              opt.csv.c_str());
+
+  if (opt.plot) {
+    const std::string script = std::string(WALKGEN_SOURCE_DIR) + "/python/plot_walking_qp.py";
+    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + opt.csv + "' '" + opt.png + "'";
+    if (std::system(cmd.c_str()) == 0) {
+      std::printf("wrote %s\n", opt.png.c_str());
+    } else {
+      std::fprintf(stderr,
+                   "warning: plotting failed (needs /usr/bin/python3 with matplotlib: "
+                   "apt-get install python3-matplotlib); the CSV is complete\n");
+    }
+  }
+  return 0;
+}

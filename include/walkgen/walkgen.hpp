@@ -1,0 +1,9 @@
+#pragma once
+/// @file
+/// Core umbrella header: everything that needs Eigen only. Never includes an adapter.
+
+#include "walkgen/core/assert.hpp"
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/model/lipm.hpp"
+#include "walkgen/qp/dense_qp.hpp"
+#include "walkgen/version.hpp"

@@ -1,0 +1,374 @@
+// Tests of walkgen::DenseQp: manufactured solutions with independent KKT checks, infeasibility,
+// warm starts, fixed sizes, float, regularisation and bad input.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+
+#include "support/qp_problems.hpp"
+#include "walkgen/qp/dense_qp.hpp"
+
+namespace {
+
+using walkgen::DenseQp;
+using walkgen::QpStatus;
+using walkgen_test::kkt_residuals;
+using walkgen_test::QpFactory;
+using walkgen_test::QpKind;
+using walkgen_test::QpProblem;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const QpStatus& solve_problem(DenseQp<double>& qp, const QpProblem& p) {
+  qp.init(p.H, p.g, p.A, p.lb, p.ub, p.l, p.u);
+  return qp.solve().status;
+}
+
+// Problem sizes cycle through small, medium and the largest asked for (150 vars, 300 rows).
+void problem_size(QpFactory& f, int k, int* n, int* m) {
+  switch (k % 4) {
+    case 0:
+      *n = f.integer(5, 20);
+      *m = f.integer(0, 40);
+      break;
+    case 1:
+      *n = f.integer(20, 70);
+      *m = f.integer(0, 140);
+      break;
+    case 2:
+      *n = f.integer(70, 150);
+      *m = f.integer(0, 300);
+      break;
+    default:
+      *n = f.integer(5, 150);
+      *m = f.integer(0, 300);
+      break;
+  }
+}
+
+TEST(DenseQp, ManufacturedSolutionsSatisfyKkt) {
+  const QpKind kinds[] = {QpKind::generic, QpKind::degenerate, QpKind::equalities,
+                          QpKind::many_bounds, QpKind::parallel};
+  constexpr int kProblems = 1000;
+  double worst_kkt = 0, worst_x = 0, worst_reported = 0;
+  int largest_n = 0, largest_m = 0, max_active = 0;
+  for (int k = 0; k < kProblems; ++k) {
+    QpFactory f(1000u + static_cast<unsigned>(k));
+    int n = 0, m = 0;
+    problem_size(f, k, &n, &m);
+    const QpKind kind = kinds[k % 5];
+    const QpProblem p = f.make(n, m, kind);
+    DenseQp<double> qp(n, m);
+    ASSERT_EQ(solve_problem(qp, p), QpStatus::solved)
+        << "problem " << k << " (" << p.kind << ", n=" << n << ", m=" << m
+        << "): " << qp.result().message;
+    const auto& r = qp.result();
+    const auto kkt = kkt_residuals(p, r.x, r.y, r.z);
+    EXPECT_LE(kkt.max(), 1e-9) << "problem " << k << " (" << p.kind << ", n=" << n << ", m=" << m
+                               << "): stationarity " << kkt.stationarity << ", primal "
+                               << kkt.primal << ", complementarity " << kkt.complementarity
+                               << ", dual sign " << kkt.dual_sign;
+    // H ≻ 0 makes the minimiser unique: it must be the manufactured one.
+    const double x_err = (r.x - p.x_star).lpNorm<Eigen::Infinity>() /
+                         std::max(1.0, p.x_star.lpNorm<Eigen::Infinity>());
+    EXPECT_LE(x_err, 1e-7) << "problem " << k << " (" << p.kind << ")";
+    // The solver's own residuals agree with the independent ones in magnitude.
+    EXPECT_LE(r.primal_residual,
+              1e-8 * std::max(1.0, m > 0 ? (p.A * r.x).lpNorm<Eigen::Infinity>() : 0.0));
+    worst_kkt = std::max(worst_kkt, kkt.max());
+    worst_x = std::max(worst_x, x_err);
+    worst_reported = std::max(worst_reported, r.dual_residual);
+    largest_n = std::max(largest_n, n);
+    largest_m = std::max(largest_m, m);
+    max_active = std::max(max_active, r.active_set_size);
+  }
+  EXPECT_EQ(largest_n, 150);
+  EXPECT_GE(largest_m, 290);
+  std::printf(
+      "[ stats    ] %d problems, n <= %d, m <= %d, up to %d active: worst relative KKT "
+      "residual %.2e, worst relative x error %.2e\n",
+      kProblems, largest_n, largest_m, max_active, worst_kkt, worst_x);
+}
+
+TEST(DenseQp, InfeasibleProblemsAreReportedInfeasible) {
+  for (int k = 0; k < 200; ++k) {
+    QpFactory f(5000u + static_cast<unsigned>(k));
+    int n = 0, m = 0;
+    problem_size(f, k, &n, &m);
+    const QpProblem p = f.make_infeasible(n, m);
+    DenseQp<double> qp(n, p.A.rows());
+    const QpStatus status = solve_problem(qp, p);
+    EXPECT_EQ(status, QpStatus::infeasible) << "problem " << k << " n=" << n << " m=" << m;
+    EXPECT_TRUE(qp.result().x.allFinite());
+  }
+}
+
+TEST(DenseQp, WarmStartAfterUpdateMatchesColdSolve) {
+  for (int k = 0; k < 100; ++k) {
+    QpFactory f(9000u + static_cast<unsigned>(k));
+    const int n = f.integer(5, 80), m = f.integer(1, 160);
+    QpProblem p = f.make(n, m, k % 2 ? QpKind::generic : QpKind::degenerate);
+    DenseQp<double> warm(n, m), cold(n, m);
+    cold.settings().warm_start = false;
+    ASSERT_EQ(solve_problem(warm, p), QpStatus::solved);
+    for (int t = 0; t < 5; ++t) {
+      // Perturb g, and move the feasible set by a small δx (bounds shift by A δx and δx), as
+      // between two control ticks; shifting keeps degenerate structure feasible.
+      Eigen::VectorXd dx(n);
+      for (int j = 0; j < n; ++j) {
+        p.g[j] += 0.01 * f.normal();
+        dx[j] = 0.01 * f.normal();
+      }
+      const Eigen::VectorXd Adx = p.A * dx;
+      p.lb += Adx;
+      p.ub += Adx;
+      p.l += dx;
+      p.u += dx;
+      ASSERT_EQ(warm.update(p.g, p.lb, p.ub, p.l, p.u), QpStatus::unsolved);
+      const auto& rw = warm.solve();
+      ASSERT_EQ(rw.status, QpStatus::solved);
+      EXPECT_TRUE(rw.warm_started);
+      EXPECT_TRUE(rw.reused_factorization);
+      const Eigen::VectorXd xw = rw.x;
+      ASSERT_EQ(solve_problem(cold, p), QpStatus::solved);
+      EXPECT_FALSE(cold.result().warm_started);
+      EXPECT_LE((xw - cold.result().x).lpNorm<Eigen::Infinity>(),
+                1e-9 * std::max(1.0, xw.lpNorm<Eigen::Infinity>()));
+      EXPECT_LE(kkt_residuals(p, rw.x, rw.y, rw.z).max(), 1e-9);
+    }
+  }
+}
+
+TEST(DenseQp, WarmStartAfterInitRebuildsTheActiveSet) {
+  QpFactory f(77);
+  QpProblem p = f.make(40, 60, QpKind::generic);
+  DenseQp<double> qp(40, 60);
+  ASSERT_EQ(solve_problem(qp, p), QpStatus::solved);
+  const int cold_iterations = qp.result().iterations;
+  ASSERT_GT(cold_iterations, 3);
+  // Same problem again through init(): the previous active set is optimal at once.
+  ASSERT_EQ(solve_problem(qp, p), QpStatus::solved);
+  EXPECT_TRUE(qp.result().warm_started);
+  EXPECT_FALSE(qp.result().reused_factorization);
+  EXPECT_EQ(qp.result().iterations, 0);
+  EXPECT_LE((qp.result().x - p.x_star).lpNorm<Eigen::Infinity>(), 1e-8);
+}
+
+TEST(DenseQp, EqualityConstrainedMatchesKktSystem) {
+  QpFactory f(3);
+  const int n = 12, m = 5;
+  Eigen::MatrixXd H = f.spd(n, 100.0, 1.0), A = f.random_matrix(m, n);
+  Eigen::VectorXd g = f.random_matrix(n, 1), b = f.random_matrix(m, 1);
+  // [H Aᵀ; A 0] [x; -y] = [-g; b], solved by a dense LU independent of the QP solver.
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
+  K.topLeftCorner(n, n) = H;
+  K.topRightCorner(n, m) = A.transpose();
+  K.bottomLeftCorner(m, n) = A;
+  Eigen::VectorXd rhs(n + m);
+  rhs << -g, b;
+  const Eigen::VectorXd sol = K.fullPivLu().solve(rhs);
+  DenseQp<double> qp(n, m);
+  ASSERT_EQ(qp.init(H, g, A, b, b), QpStatus::unsolved);
+  const auto& r = qp.solve();
+  ASSERT_EQ(r.status, QpStatus::solved);
+  EXPECT_LE((r.x - sol.head(n)).lpNorm<Eigen::Infinity>(), 1e-10);
+  EXPECT_LE((r.y - sol.tail(m)).lpNorm<Eigen::Infinity>(), 1e-9);
+  EXPECT_EQ(r.active_set_size, m);
+}
+
+TEST(DenseQp, UnconstrainedIsNewtonStep) {
+  QpFactory f(4);
+  const int n = 30;
+  Eigen::MatrixXd H = f.spd(n, 1e3, 2.0);
+  Eigen::VectorXd g = f.random_matrix(n, 1);
+  DenseQp<double> qp(n, 0);
+  qp.init(H, g, Eigen::MatrixXd(0, n), Eigen::VectorXd(0), Eigen::VectorXd(0));
+  const auto& r = qp.solve();
+  ASSERT_EQ(r.status, QpStatus::solved);
+  const Eigen::VectorXd expected = -H.ldlt().solve(g);
+  EXPECT_LE((r.x - expected).lpNorm<Eigen::Infinity>(), 1e-10 * expected.lpNorm<Eigen::Infinity>());
+  EXPECT_NEAR(r.objective, 0.5 * expected.dot(H * expected) + g.dot(expected), 1e-10);
+  EXPECT_EQ(r.iterations, 0);
+}
+
+TEST(DenseQp, BlockDiagonalHessianMatchesDenseFactorisation) {
+  // Block-diagonal H (factorised per block) and the same H densified by a rotation give the same
+  // solution after mapping back.
+  QpFactory f(5);
+  const int n = 20, m = 15;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+  H.block(0, 0, 7, 7) = f.spd(7, 10, 1);
+  H.block(7, 7, 1, 1) = f.spd(1, 1, 3);
+  H.block(8, 8, 12, 12) = f.spd(12, 100, 2);
+  Eigen::MatrixXd A = f.random_matrix(m, n);
+  Eigen::VectorXd g = f.random_matrix(n, 1);
+  Eigen::VectorXd lb = Eigen::VectorXd::Constant(m, -1.0), ub = Eigen::VectorXd::Constant(m, 1.0);
+  DenseQp<double> block(n, m);
+  block.init(H, g, A, lb, ub);
+  ASSERT_EQ(block.solve().status, QpStatus::solved);
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(f.random_matrix(n, n));
+  const Eigen::MatrixXd Q = qr.householderQ();  // x = Q w
+  DenseQp<double> dense(n, m);
+  Eigen::MatrixXd Hw = Q.transpose() * H * Q;
+  Hw = 0.5 * (Hw + Hw.transpose()).eval();
+  dense.init(Hw, Q.transpose() * g, A * Q, lb, ub);
+  ASSERT_EQ(dense.solve().status, QpStatus::solved);
+  EXPECT_LE((block.result().x - Q * dense.result().x).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+TEST(DenseQp, FixedSizesMatchDynamicSizes) {
+  QpFactory f(6);
+  QpProblem p = f.make(6, 4, QpKind::generic);
+  DenseQp<double, 6, 4> fixed;
+  DenseQp<double> dynamic(6, 4);
+  Eigen::Matrix<double, 6, 6> H = p.H;
+  Eigen::Matrix<double, 4, 6> A = p.A;
+  ASSERT_EQ(fixed.init(H, p.g, A, p.lb, p.ub, p.l, p.u), QpStatus::unsolved);
+  ASSERT_EQ(fixed.solve().status, QpStatus::solved);
+  ASSERT_EQ(solve_problem(dynamic, p), QpStatus::solved);
+  EXPECT_LE((fixed.result().x - dynamic.result().x).lpNorm<Eigen::Infinity>(), 1e-13);
+  EXPECT_LE((fixed.result().x - p.x_star).lpNorm<Eigen::Infinity>(), 1e-9);
+  // Single variable, single row: the column-vector special case of the row-major A.
+  DenseQp<double, 1, 1> tiny;
+  Eigen::Matrix<double, 1, 1> h(2.0), g1(-4.0), a(1.0), lo(-kInf), hi(1.0);
+  tiny.init(h, g1, a, lo, hi);
+  ASSERT_EQ(tiny.solve().status, QpStatus::solved);
+  EXPECT_NEAR(tiny.result().x[0], 1.0, 1e-15);
+  EXPECT_NEAR(tiny.result().y[0], 2.0, 1e-14);  // 2·1 − 4 + y = 0
+}
+
+TEST(DenseQp, FloatScalar) {
+  QpFactory f(7);
+  QpProblem p = f.make(10, 8, QpKind::generic);
+  DenseQp<float> qp(10, 8);
+  Eigen::MatrixXf H = p.H.cast<float>(), A = p.A.cast<float>();
+  ASSERT_EQ(qp.init(H, p.g.cast<float>(), A, p.lb.cast<float>(), p.ub.cast<float>(),
+                    p.l.cast<float>(), p.u.cast<float>()),
+            QpStatus::unsolved);
+  ASSERT_EQ(qp.solve().status, QpStatus::solved);
+  EXPECT_LE((qp.result().x.cast<double>() - p.x_star).lpNorm<Eigen::Infinity>(),
+            1e-2 * std::max(1.0, p.x_star.lpNorm<Eigen::Infinity>()));
+}
+
+TEST(DenseQp, RegularisationSolvesSemidefiniteHessian) {
+  // H = diag(1, 0): without regularisation invalid; with ε the regularised problem is solved.
+  Eigen::Matrix2d H;
+  H << 1, 0, 0, 0;
+  Eigen::Vector2d g(-1, -1);
+  Eigen::RowVector2d A(0, 1);
+  Eigen::Matrix<double, 1, 1> lb(-kInf), ub(2.0);
+  DenseQp<double> qp(2, 1);
+  EXPECT_EQ(qp.init(H, g, A, lb, ub), QpStatus::invalid_input);
+  EXPECT_NE(std::string(qp.result().message).find("positive definite"), std::string::npos);
+  EXPECT_EQ(qp.solve().status, QpStatus::invalid_input);
+  EXPECT_TRUE(qp.result().x.allFinite());
+  qp.settings().regularization = 1e-8;
+  ASSERT_EQ(qp.init(H, g, A, lb, ub), QpStatus::unsolved);
+  const auto& r = qp.solve();
+  ASSERT_EQ(r.status, QpStatus::solved);
+  // Regularised optimum: x0 = 1/(1+ε), x1 = 2 (bound active, multiplier 1 − 2ε).
+  EXPECT_NEAR(r.x[0], 1.0 / (1.0 + 1e-8), 1e-10);  // cond(H + εI) = 1e8
+  EXPECT_NEAR(r.x[1], 2.0, 1e-14);
+  EXPECT_NEAR(r.y[0], 1.0 - 2e-8, 1e-10);
+}
+
+TEST(DenseQp, IterationLimitIsReported) {
+  QpFactory f(8);
+  QpProblem p = f.make(40, 80, QpKind::generic);
+  DenseQp<double> qp(40, 80);
+  qp.settings().max_iterations = 2;
+  qp.settings().warm_start = false;
+  EXPECT_EQ(solve_problem(qp, p), QpStatus::max_iterations);
+  EXPECT_TRUE(qp.result().x.allFinite());
+  qp.settings().max_iterations = 0;
+  EXPECT_EQ(solve_problem(qp, p), QpStatus::solved);
+}
+
+TEST(DenseQp, WrongSizesThrowWithExpectedGot) {
+  DenseQp<double> qp(3, 2);
+  Eigen::MatrixXd H = Eigen::MatrixXd::Identity(3, 3), A = Eigen::MatrixXd::Ones(2, 3);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3), lb = -Eigen::VectorXd::Ones(2),
+                  ub = Eigen::VectorXd::Ones(2);
+  try {
+    qp.init(Eigen::MatrixXd::Identity(4, 4), g, A, lb, ub);
+    FAIL() << "expected walkgen::invalid_argument";
+  } catch (const walkgen::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("expected an n x n matrix, got 4 x 4"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(qp.init(H, Eigen::VectorXd::Zero(2), A, lb, ub), walkgen::invalid_argument);
+  EXPECT_THROW(qp.init(H, g, Eigen::MatrixXd::Ones(3, 3), lb, ub), walkgen::invalid_argument);
+  EXPECT_THROW(qp.init(H, g, A, lb, Eigen::VectorXd::Ones(3)), walkgen::invalid_argument);
+  EXPECT_THROW(qp.init(H, g, A, lb, ub, Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(3)),
+               walkgen::invalid_argument);
+  EXPECT_THROW((DenseQp<double>(0, 2)), walkgen::invalid_argument);
+  EXPECT_THROW((DenseQp<double>(3, -1)), walkgen::invalid_argument);
+  EXPECT_THROW((DenseQp<double, 3, 2>(3, 5)), walkgen::invalid_argument);
+  // Mismatched sizes in update() too.
+  ASSERT_EQ(qp.init(H, g, A, lb, ub), QpStatus::unsolved);
+  EXPECT_THROW(qp.update(Eigen::VectorXd::Zero(4), lb, ub), walkgen::invalid_argument);
+}
+
+TEST(DenseQp, BadNumbersGiveInvalidInputNeverNan) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Eigen::MatrixXd H = Eigen::MatrixXd::Identity(3, 3), A = Eigen::MatrixXd::Ones(2, 3);
+  Eigen::VectorXd g = Eigen::VectorXd::Ones(3), lb = -Eigen::VectorXd::Ones(2),
+                  ub = Eigen::VectorXd::Ones(2);
+  struct Case {
+    const char* name;
+    Eigen::MatrixXd H, A;
+    Eigen::VectorXd g, lb, ub;
+    const char* message_part;
+  };
+  std::vector<Case> cases;
+  auto with = [&](const char* name, const char* part) {
+    cases.push_back({name, H, A, g, lb, ub, part});
+    return &cases.back();
+  };
+  with("NaN in g", "g has a NaN")->g[1] = nan;
+  with("Inf in g", "g has a NaN or Inf")->g[0] = kInf;
+  with("NaN in H", "H has a NaN")->H(1, 1) = nan;
+  with("Inf in A", "A has a NaN or Inf")->A(0, 2) = -kInf;
+  with("NaN in lb", "NaN")->lb[0] = nan;
+  with("lb > ub", "lb > ub")->lb[1] = 2.0;
+  with("lb = +inf", "lb = +inf")->lb[0] = kInf;
+  Case* c = with("H not symmetric", "not symmetric");
+  c->H(0, 1) = 0.5;
+  c = with("H indefinite", "positive definite");
+  c->H(2, 2) = -1.0;
+  for (const Case& k : cases) {
+    DenseQp<double> qp(3, 2);
+    EXPECT_EQ(qp.init(k.H, k.g, k.A, k.lb, k.ub), QpStatus::invalid_input) << k.name;
+    EXPECT_NE(std::string(qp.result().message).find(k.message_part), std::string::npos)
+        << k.name << ": " << qp.result().message;
+    const auto& r = qp.solve();
+    EXPECT_EQ(r.status, QpStatus::invalid_input) << k.name;
+    EXPECT_TRUE(r.x.allFinite() && r.y.allFinite() && r.z.allFinite()) << k.name;
+  }
+  // A valid init followed by a bad update: invalid until fixed, then solved again.
+  DenseQp<double> qp(3, 2);
+  ASSERT_EQ(qp.init(H, g, A, lb, ub), QpStatus::unsolved);
+  ASSERT_EQ(qp.solve().status, QpStatus::solved);
+  Eigen::VectorXd bad = g;
+  bad[2] = nan;
+  EXPECT_EQ(qp.update(bad, lb, ub), QpStatus::invalid_input);
+  EXPECT_EQ(qp.solve().status, QpStatus::invalid_input);
+  EXPECT_TRUE(qp.result().x.allFinite());
+  EXPECT_EQ(qp.update(g, lb, ub), QpStatus::unsolved);
+  EXPECT_EQ(qp.solve().status, QpStatus::solved);
+  // update() before any init().
+  DenseQp<double> fresh(3, 2);
+  EXPECT_EQ(fresh.update(g, lb, ub), QpStatus::invalid_input);
+}
+
+TEST(DenseQp, StatusNames) {
+  EXPECT_STREQ(walkgen::to_string(QpStatus::solved), "solved");
+  EXPECT_STREQ(walkgen::to_string(QpStatus::infeasible), "infeasible");
+  EXPECT_STREQ(walkgen::to_string(QpStatus::max_iterations), "max_iterations");
+  EXPECT_STREQ(walkgen::to_string(QpStatus::invalid_input), "invalid_input");
+  EXPECT_STREQ(walkgen::to_string(QpStatus::unsolved), "unsolved");
+}
+
+}  // namespace
