@@ -831,7 +831,7 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
   solve_active_set();
   if (result_.warm_started) drop_negative_multipliers();
 
-  bool refined = false;
+  bool refined = true;  // x and λ were just computed from the active set
   int refreshes = 0;
   for (;;) {
     int sign = 0;
