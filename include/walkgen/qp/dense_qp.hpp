@@ -8,9 +8,10 @@
 ///
 /// Method: the dual active-set method of Goldfarb and Idnani (Math. Programming 27, 1983),
 /// which suits the small, dense, strictly convex QPs of walking pattern generation
-/// (thesis eq. 2.83–2.84). With H = L Lᵀ it keeps J = L⁻ᵀ Q and an upper-triangular R with
-/// Q Lᵀ⁻¹... i.e. J₁ᵀ N = R for the active normals N, updated by one Householder reflection per
-/// added constraint and Givens rotations per dropped one: O(n²) work per active-set change.
+/// (thesis eq. 2.83–2.84). With H = L Lᵀ and the q active normals N (n × q) it keeps
+/// J = L⁻ᵀ Q and an upper-triangular R such that L⁻¹ N = Q [R; 0], i.e. J₁ᵀ N = R for the first
+/// q columns J₁ of J. Each active-set change updates J and R by one Householder reflection per
+/// added constraint or Givens rotations per dropped one: O(n²) work per active-set change.
 ///
 /// Warm start: solve() begins from the previous solve's active set. After update(), which
 /// changes only g and the bounds, the factorisation of H *and* of that active set are reused, so
