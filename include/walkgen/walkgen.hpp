@@ -4,6 +4,10 @@
 
 #include "walkgen/core/assert.hpp"
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/foot.hpp"
+#include "walkgen/interpolation/polynomial.hpp"
 #include "walkgen/model/lipm.hpp"
+#include "walkgen/model/support_polygon.hpp"
+#include "walkgen/mpc/settings.hpp"
 #include "walkgen/qp/dense_qp.hpp"
 #include "walkgen/version.hpp"

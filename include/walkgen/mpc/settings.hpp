@@ -1,0 +1,228 @@
+#pragma once
+/// @file
+/// Settings of the walking pattern generator: every key of the thesis's configuration file
+/// (Table 6.1), with units, plus the few limits the thesis's code hard-coded. Two robots as code
+/// presets: hrp2_settings() and heicub_settings(). validate() says what is wrong with a set.
+///
+/// Key names follow Table 6.1 so that existing YAML files load unchanged (the YAML reader lives
+/// in an adapter; the core needs Eigen only).
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/foot.hpp"
+#include "walkgen/model/support_polygon.hpp"
+
+namespace walkgen {
+
+namespace detail {
+/// HRP-2's footstep feasibility region of the left foot relative to the right one [m], from the
+/// thesis's HRP-2 configuration (configs_hrp2.yaml of github.com/mhubii/nmpc_pattern_generator);
+/// mirror_y() gives the right foot's.
+template <typename Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, 2> hrp2_left_hull() {
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 2> hull(5, 2);
+  hull << -0.28, 0.2, -0.20, 0.3, 0.00, 0.4, 0.20, 0.3, 0.28, 0.2;
+  return hull;
+}
+template <typename Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, 2> mirror_y(Eigen::Matrix<Scalar, Eigen::Dynamic, 2> hull) {
+  hull.col(1) *= Scalar(-1);
+  return hull;
+}
+}  // namespace detail
+
+/// A circular obstacle the footsteps must stay out of (eq. 2.79): every footstep centre keeps
+/// at least radius + margin from (x, y). World frame, metres.
+template <typename Scalar = double>
+struct CircleObstacle {
+  Scalar x = Scalar(0), y = Scalar(0);
+  Scalar radius = Scalar(0);  ///< [m] > 0
+  Scalar margin = Scalar(0);  ///< [m] ≥ 0, added to the radius (foot size and safety)
+};
+
+/// Pattern generator settings. The in-class defaults are the HRP-2 set (hrp2_settings()).
+template <typename Scalar = double>
+struct WalkingSettings {
+  using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Polygon = Eigen::Matrix<Scalar, Eigen::Dynamic, 2>;
+
+  // --- Specifications -------------------------------------------------------------------------
+  /// [s] duration of one step, single + double support (`t_step`). Longer: slower, calmer gait.
+  Scalar t_step = Scalar(0.8);
+  /// [m] how far the ZMP polygon is shrunk from the foot's edges in x and y (`security_margin`,
+  /// fig. 6.4). Larger: more robust balance, less room for the ZMP, shorter feasible steps.
+  Vector2 security_margin = Vector2(Scalar(0.09), Scalar(0.05));
+  /// [m] vertices (E × 2) of the region where the left foot may land, in the frame of the right
+  /// (support) foot (`left_foot_convex_hull`, fig. 2.5). Convex; any orientation.
+  Polygon left_foot_convex_hull = detail::hrp2_left_hull<Scalar>();
+  /// [m] the same for the right foot relative to the left one (`right_foot_convex_hull`).
+  Polygon right_foot_convex_hull = detail::mirror_y<Scalar>(detail::hrp2_left_hull<Scalar>());
+  Scalar foot_width = Scalar(0.1380);   ///< [m] sole size across the foot (y), `foot_width`
+  Scalar foot_length = Scalar(0.2172);  ///< [m] sole size along the foot (x), `foot_length`
+  Scalar foot_distance = Scalar(0.2);  ///< [m] lateral distance of the feet frames, `foot_distance`
+
+  // --- Interpolation --------------------------------------------------------------------------
+  Scalar command_period = Scalar(0.005);  ///< [s] period of the interpolated trajectories
+  int n_still = 0;                    ///< preview horizons to stand still at the start, `n_still`
+  Scalar t_ds = Scalar(0.4);          ///< [s] double support time within each step, `t_ds`
+  Scalar step_height = Scalar(0.05);  ///< [m] apex height of the swing foot (eq. 2.95)
+
+  // --- Initial values -------------------------------------------------------------------------
+  Vector3 com_x = Vector3(Scalar(0), Scalar(0), Scalar(0));    ///< CoM x, ẋ, ẍ [m, m/s, m/s²]
+  Vector3 com_y = Vector3(Scalar(0.1), Scalar(0), Scalar(0));  ///< CoM y, ẏ, ÿ
+  Scalar com_z = Scalar(0.814);                                ///< [m] CoM height c_z (eq. 2.40)
+  Vector3 com_q = Vector3(Scalar(0), Scalar(0), Scalar(0));  ///< CoM yaw θ, θ̇, θ̈ [rad, …]
+  Foot support_foot = Foot::left;                            ///< initial support foot
+  Scalar foot_x = Scalar(0);    ///< [m] initial support foot x (eq. 2.47)
+  Scalar foot_y = Scalar(0.1);  ///< [m] initial support foot y
+  Scalar foot_q = Scalar(0);    ///< [rad] initial support foot yaw
+
+  // --- Environment ----------------------------------------------------------------------------
+  Scalar gravity = Scalar(9.81);  ///< [m/s²]
+
+  // --- Obstacles (Table 6.1 has one: `obstacle`, `x_pos`, `y_pos`, `radius`) ------------------
+  std::vector<CircleObstacle<Scalar>> obstacles;
+
+  // --- Optimisation ---------------------------------------------------------------------------
+  int n = 16;                       ///< preview intervals N (eq. 2.30)
+  Scalar t = Scalar(0.1);           ///< [s] preview sampling period T (eq. 2.31)
+  Scalar t_feedback = Scalar(0.1);  ///< [s] CoM and feet feedback period, `t_feedback`
+  /// Cost weights (eq. 2.43–2.46): alpha tracks the velocity command, beta centres the ZMP in the
+  /// foot, gamma penalises jerk. Raising beta trades command tracking for ZMP margin; gamma > 0
+  /// keeps the QP strictly convex and smooths the CoM.
+  Scalar alpha = Scalar(1), beta = Scalar(1e-6), gamma = Scalar(1e-5);
+  /// [s] the thesis's qpOASES wall-clock limit (`cpu_time`). Accepted for compatibility and
+  /// ignored: a wall-clock limit made the thesis's runs fail under load (DESIGN.md §4); walkgen
+  /// limits work by iterations (`nwsr`) instead.
+  Scalar cpu_time = Scalar(0.01);
+  /// Maximal active-set changes per QP solve (`nwsr`); reaching it fails the tick safely.
+  int nwsr = 100;
+
+  // --- Limits hard-coded in the thesis's code, made settings here --------------------------------
+  Scalar max_relative_yaw = Scalar(0.09);       ///< [rad] |θ_L − θ_R| (eq. 2.73)
+  Scalar max_relative_yaw_rate = Scalar(0.22);  ///< [rad/s] |θ̇_L − θ̇_R| (eq. 2.74)
+  /// Gauss–Newton iterations per tick: 1 is the real-time iteration (eq. 2.83–2.89).
+  int sqp_iterations = 1;
+
+  /// Samples of the preview horizon per step, t_step / t (an integer after validate()).
+  int samples_per_step() const { return static_cast<int>(std::lround(t_step / t)); }
+  /// Footsteps planned within the horizon, ⌊N T / t_step⌋ (N_f in the thesis).
+  int planned_steps() const { return n / samples_per_step(); }
+};
+
+/// HRP-2 (thesis §9.1, figures 9.1–9.3): the in-class defaults.
+template <typename Scalar = double>
+WalkingSettings<Scalar> hrp2_settings() {
+  return WalkingSettings<Scalar>();
+}
+
+/// Heicub (thesis Table 6.1). The feasibility hulls beyond Table 6.1's first vertex are those of
+/// the thesis's Heicub configuration (configs.yaml of github.com/mhubii/nmpc_pattern_generator).
+template <typename Scalar = double>
+WalkingSettings<Scalar> heicub_settings() {
+  WalkingSettings<Scalar> s;
+  s.t_step = Scalar(3.2);
+  s.security_margin << Scalar(0.02), Scalar(0.02);
+  s.left_foot_convex_hull.resize(5, 2);
+  s.left_foot_convex_hull << -0.11, 0.14, -0.10, 0.16, 0.00, 0.17, 0.10, 0.16, 0.11, 0.14;
+  s.right_foot_convex_hull = detail::mirror_y<Scalar>(s.left_foot_convex_hull);
+  s.foot_width = Scalar(0.1);
+  s.foot_length = Scalar(0.2);
+  s.foot_distance = Scalar(0.14);
+  s.command_period = Scalar(0.01);
+  s.n_still = 0;
+  s.t_ds = Scalar(1.6);
+  s.step_height = Scalar(0.03);
+  s.com_x << Scalar(0), Scalar(0), Scalar(0);
+  s.com_y << Scalar(0.05), Scalar(0), Scalar(0);
+  s.com_z = Scalar(0.45);
+  s.foot_x = Scalar(0);
+  s.foot_y = Scalar(0.07);
+  s.foot_q = Scalar(0);
+  s.n = 16;
+  s.t = Scalar(0.4);
+  s.t_feedback = Scalar(0.4);
+  s.alpha = Scalar(1);
+  s.beta = Scalar(1e2);
+  s.gamma = Scalar(1e-2);
+  return s;
+}
+
+namespace detail {
+template <typename Scalar>
+bool is_multiple(Scalar value, Scalar period) {
+  const Scalar k = value / period;
+  return std::abs(k - std::round(k)) <= Scalar(1e-6) * std::max(Scalar(1), std::abs(k));
+}
+}  // namespace detail
+
+/// Checks a settings set before a generator is built from it.
+/// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
+template <typename Scalar>
+void validate(const WalkingSettings<Scalar>& s) {
+  auto positive = [](const char* key, Scalar v) {
+    check_argument(std::isfinite(v) && v > Scalar(0), key, "a finite value > 0", v);
+  };
+  auto non_negative = [](const char* key, Scalar v) {
+    check_argument(std::isfinite(v) && v >= Scalar(0), key, "a finite value >= 0", v);
+  };
+  check_argument(s.n >= 1, "WalkingSettings.n", "a horizon of at least 1 interval", s.n);
+  positive("WalkingSettings.t", s.t);
+  positive("WalkingSettings.t_step", s.t_step);
+  check_argument(s.t_step >= s.t && detail::is_multiple(s.t_step, s.t), "WalkingSettings.t_step",
+                 "a whole multiple of t = " + std::to_string(s.t) + " s", s.t_step);
+  check_argument(
+      s.planned_steps() >= 1, "WalkingSettings.n",
+      "a horizon n·t covering at least one step (t_step = " + std::to_string(s.t_step) + " s)", s.n,
+      "increase n or shorten t_step");
+  non_negative("WalkingSettings.t_ds", s.t_ds);
+  check_argument(s.t_ds < s.t_step, "WalkingSettings.t_ds", "a double support shorter than t_step",
+                 s.t_ds);
+  positive("WalkingSettings.command_period", s.command_period);
+  check_argument(s.command_period <= s.t && detail::is_multiple(s.t, s.command_period),
+                 "WalkingSettings.command_period", "a period that divides t evenly",
+                 s.command_period);
+  positive("WalkingSettings.t_feedback", s.t_feedback);
+  check_argument(s.n_still >= 0, "WalkingSettings.n_still", "a count >= 0", s.n_still);
+  non_negative("WalkingSettings.step_height", s.step_height);
+  positive("WalkingSettings.foot_width", s.foot_width);
+  positive("WalkingSettings.foot_length", s.foot_length);
+  positive("WalkingSettings.foot_distance", s.foot_distance);
+  non_negative("WalkingSettings.security_margin[0]", s.security_margin[0]);
+  non_negative("WalkingSettings.security_margin[1]", s.security_margin[1]);
+  check_argument(Scalar(2) * s.security_margin[0] < s.foot_length,
+                 "WalkingSettings.security_margin[0]", "less than half the foot length",
+                 s.security_margin[0], "the shrunk support polygon would be empty");
+  check_argument(Scalar(2) * s.security_margin[1] < s.foot_width,
+                 "WalkingSettings.security_margin[1]", "less than half the foot width",
+                 s.security_margin[1], "the shrunk support polygon would be empty");
+  check_convex_polygon("WalkingSettings.left_foot_convex_hull", s.left_foot_convex_hull);
+  check_convex_polygon("WalkingSettings.right_foot_convex_hull", s.right_foot_convex_hull);
+  check_argument(s.com_x.allFinite() && s.com_y.allFinite() && s.com_q.allFinite(),
+                 "WalkingSettings.com_x/com_y/com_q", "finite values", "NaN or inf");
+  positive("WalkingSettings.com_z", s.com_z);
+  check_argument(std::isfinite(s.foot_x) && std::isfinite(s.foot_y) && std::isfinite(s.foot_q),
+                 "WalkingSettings.foot_x/foot_y/foot_q", "finite values", "NaN or inf");
+  positive("WalkingSettings.gravity", s.gravity);
+  non_negative("WalkingSettings.alpha", s.alpha);
+  non_negative("WalkingSettings.beta", s.beta);
+  positive("WalkingSettings.gamma", s.gamma);  // strict convexity of the QP
+  check_argument(s.nwsr >= 1, "WalkingSettings.nwsr", "at least 1 active-set change", s.nwsr);
+  positive("WalkingSettings.max_relative_yaw", s.max_relative_yaw);
+  positive("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate);
+  check_argument(s.sqp_iterations >= 1, "WalkingSettings.sqp_iterations", "at least 1",
+                 s.sqp_iterations);
+  for (const auto& o : s.obstacles) {
+    check_argument(std::isfinite(o.x) && std::isfinite(o.y), "WalkingSettings.obstacles[].x/y",
+                   "a finite centre", "NaN or inf");
+    positive("WalkingSettings.obstacles[].radius", o.radius);
+    non_negative("WalkingSettings.obstacles[].margin", o.margin);
+  }
+}
+
+}  // namespace walkgen
