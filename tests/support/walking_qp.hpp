@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "walkgen/model/lipm.hpp"
+#include "walkgen/model/support_polygon.hpp"
 
 namespace walkgen_test {
 
@@ -61,6 +62,13 @@ class WalkingQpSequence {
     cy_[0] = 0.1;  // CoM starts over the support foot
     yaw_left_.setZero();
     yaw_right_.setZero();
+    // Where the right foot may land relative to the left one; mirrored (y → −y) for the left.
+    Eigen::Matrix<double, 5, 2> right_of_left;
+    right_of_left << -0.25, -0.14, 0.25, -0.14, 0.30, -0.22, 0.0, -0.32, -0.30, -0.22;
+    Eigen::Matrix<double, 5, 2> left_of_right = right_of_left;
+    left_of_right.col(1) *= -1.0;
+    walkgen::polygon_halfplanes(right_of_left, hull_A_[0], hull_b_[0]);
+    walkgen::polygon_halfplanes(left_of_right, hull_A_[1], hull_b_[1]);
   }
 
   // The QP of the current tick for command cmd.
@@ -178,25 +186,11 @@ class WalkingQpSequence {
       const bool prev_left = support_is_left(st);
       const double yaw = step_yaw[st];
       const double cy = std::cos(yaw), sy = std::sin(yaw);
-      // Pentagon for the right foot relative to the left one; mirrored (y → −y) otherwise.
-      const double pts[5][2] = {
-          {-0.25, -0.14}, {0.25, -0.14}, {0.30, -0.22}, {0.0, -0.32}, {-0.30, -0.22}};
+      // Half-planes of the landing region in the previous foot's frame (eq. 2.62–2.64).
+      const Eigen::Matrix<double, 5, 2>& hull_A = hull_A_[prev_left ? 0 : 1];
+      const Eigen::Matrix<double, 5, 1>& hull_b = hull_b_[prev_left ? 0 : 1];
       for (int e = 0; e < 5; ++e) {
-        double p1x = pts[e][0], p1y = pts[e][1];
-        double p2x = pts[(e + 1) % 5][0], p2y = pts[(e + 1) % 5][1];
-        if (!prev_left) {
-          p1y = -p1y;
-          p2y = -p2y;
-        }
-        // Outward normal of edge p1→p2 (eq. 2.62–2.64 up to the sign, fixed by the centroid).
-        double nx = p2y - p1y, ny = p1x - p2x;
-        double b = nx * p1x + ny * p1y;
-        const double cxp = 0.0, cyp = prev_left ? -0.2 : 0.2;
-        if (nx * cxp + ny * cyp > b) {
-          nx = -nx;
-          ny = -ny;
-          b = -b;
-        }
+        const double nx = hull_A(e, 0), ny = hull_A(e, 1), b = hull_b[e];
         const double ax = nx * cy + ny * sy;
         const double ay = -nx * sy + ny * cy;
         const int fx = kN + st, fy = 2 * kN + kSteps + st;
@@ -271,6 +265,9 @@ class WalkingQpSequence {
   walkgen::LipmStep<double> step_;
   Eigen::Vector3d cx_, cy_, yaw_left_, yaw_right_;
   Eigen::Vector3d support_, swing_;  // x, y, yaw
+  // Landing-region half-planes: [0] after a left support foot, [1] after a right one.
+  Eigen::Matrix<double, 5, 2> hull_A_[2];
+  Eigen::Matrix<double, 5, 1> hull_b_[2];
   bool left_support_ = true;
   int phase_ = 0;
 };

@@ -8,6 +8,7 @@
 /// (an infeasible QP, a non-converged solve) are never thrown: they are reported in a
 /// Result's status.
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,19 @@ void check_argument(bool condition, const char* where, const Expected& expected,
   if (!condition) {
     throw invalid_argument(detail::expected_got(where, expected, got, hint));
   }
+}
+
+/// Throws unless value is finite and > 0; `expected` describes it, e.g. "a period > 0 s".
+template <typename Scalar>
+void check_positive(const char* where, Scalar value, const char* expected = "a finite value > 0") {
+  check_argument(std::isfinite(value) && value > Scalar(0), where, expected, value);
+}
+
+/// Throws unless value is finite and >= 0.
+template <typename Scalar>
+void check_non_negative(const char* where, Scalar value,
+                        const char* expected = "a finite value >= 0") {
+  check_argument(std::isfinite(value) && value >= Scalar(0), where, expected, value);
 }
 
 }  // namespace walkgen

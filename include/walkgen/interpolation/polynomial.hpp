@@ -44,21 +44,13 @@ struct Polynomial {
   }
 };
 
-namespace detail {
-template <typename Scalar>
-void check_duration(const char* where, Scalar duration) {
-  check_argument(std::isfinite(static_cast<double>(duration)) && duration > Scalar(0), where,
-                 "a duration > 0 s", duration);
-}
-}  // namespace detail
-
 /// The 5th-order polynomial from (p0, v0, a0) at t = 0 to (p1, v1, a1) at t = duration
 /// (eq. 2.108–2.111). Used for the feet's x, y and yaw during single support.
 /// @throws walkgen::invalid_argument if duration is not finite and > 0.
 template <typename Scalar>
 Polynomial<Scalar, 5> quintic(Scalar duration, const Sample3<Scalar>& start,
                               const Sample3<Scalar>& end) {
-  detail::check_duration("quintic: duration", duration);
+  check_positive("quintic: duration", duration, "a duration > 0 s");
   const Scalar T = duration, T2 = T * T, T3 = T2 * T, T4 = T3 * T, T5 = T4 * T;
   const Scalar p0 = start.position, v0 = start.velocity, a0 = start.acceleration;
   const Scalar p1 = end.position, v1 = end.velocity, a1 = end.acceleration;
@@ -86,7 +78,7 @@ Polynomial<Scalar, 5> quintic(Scalar duration, const Sample3<Scalar>& start,
 template <typename Scalar>
 Polynomial<Scalar, 4> quartic_lift(Scalar duration, Scalar z0, Scalar v0, Scalar z_mid, Scalar z1,
                                    Scalar v1) {
-  detail::check_duration("quartic_lift: duration", duration);
+  check_positive("quartic_lift: duration", duration, "a duration > 0 s");
   const Scalar T = duration, T2 = T * T, T3 = T2 * T, T4 = T3 * T;
   Polynomial<Scalar, 4> poly;
   poly.duration = T;

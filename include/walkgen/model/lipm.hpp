@@ -21,7 +21,7 @@ struct LipmStep {
   Eigen::Matrix<Scalar, 3, 1> B;
 
   explicit LipmStep(Scalar T) {
-    check_argument(std::isfinite(T) && T > Scalar(0), "LipmStep: T", "a period > 0 s", T);
+    check_positive("LipmStep: T", T, "a period > 0 s");
     A << Scalar(1), T, T * T / Scalar(2),  //
         Scalar(0), Scalar(1), T,           //
         Scalar(0), Scalar(0), Scalar(1);
@@ -58,11 +58,9 @@ struct LipmPreview {
   LipmPreview(Scalar T_, Scalar com_height_, Scalar gravity_ = Scalar(9.81),
               Eigen::Index horizon = N)
       : T(T_), com_height(com_height_), gravity(gravity_) {
-    check_argument(std::isfinite(T) && T > Scalar(0), "LipmPreview: T", "a period > 0 s", T);
-    check_argument(std::isfinite(com_height) && com_height > Scalar(0), "LipmPreview: com_height",
-                   "a height > 0 m", com_height);
-    check_argument(std::isfinite(gravity) && gravity > Scalar(0), "LipmPreview: gravity",
-                   "g > 0 m/s^2", gravity);
+    check_positive("LipmPreview: T", T, "a period > 0 s");
+    check_positive("LipmPreview: com_height", com_height, "a height > 0 m");
+    check_positive("LipmPreview: gravity", gravity, "g > 0 m/s^2");
     check_argument(horizon > 0 && (N == Eigen::Dynamic || horizon == N), "LipmPreview: horizon",
                    "N > 0 (equal to the template N when fixed)", horizon);
     const Eigen::Index n = horizon;

@@ -165,36 +165,30 @@ bool is_multiple(Scalar value, Scalar period) {
 /// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
 template <typename Scalar>
 void validate(const WalkingSettings<Scalar>& s) {
-  auto positive = [](const char* key, Scalar v) {
-    check_argument(std::isfinite(v) && v > Scalar(0), key, "a finite value > 0", v);
-  };
-  auto non_negative = [](const char* key, Scalar v) {
-    check_argument(std::isfinite(v) && v >= Scalar(0), key, "a finite value >= 0", v);
-  };
   check_argument(s.n >= 1, "WalkingSettings.n", "a horizon of at least 1 interval", s.n);
-  positive("WalkingSettings.t", s.t);
-  positive("WalkingSettings.t_step", s.t_step);
+  check_positive("WalkingSettings.t", s.t);
+  check_positive("WalkingSettings.t_step", s.t_step);
   check_argument(s.t_step >= s.t && detail::is_multiple(s.t_step, s.t), "WalkingSettings.t_step",
                  "a whole multiple of t = " + std::to_string(s.t) + " s", s.t_step);
   check_argument(
       s.planned_steps() >= 1, "WalkingSettings.n",
       "a horizon n·t covering at least one step (t_step = " + std::to_string(s.t_step) + " s)", s.n,
       "increase n or shorten t_step");
-  non_negative("WalkingSettings.t_ds", s.t_ds);
+  check_non_negative("WalkingSettings.t_ds", s.t_ds);
   check_argument(s.t_ds < s.t_step, "WalkingSettings.t_ds", "a double support shorter than t_step",
                  s.t_ds);
-  positive("WalkingSettings.command_period", s.command_period);
+  check_positive("WalkingSettings.command_period", s.command_period);
   check_argument(s.command_period <= s.t && detail::is_multiple(s.t, s.command_period),
                  "WalkingSettings.command_period", "a period that divides t evenly",
                  s.command_period);
-  positive("WalkingSettings.t_feedback", s.t_feedback);
+  check_positive("WalkingSettings.t_feedback", s.t_feedback);
   check_argument(s.n_still >= 0, "WalkingSettings.n_still", "a count >= 0", s.n_still);
-  non_negative("WalkingSettings.step_height", s.step_height);
-  positive("WalkingSettings.foot_width", s.foot_width);
-  positive("WalkingSettings.foot_length", s.foot_length);
-  positive("WalkingSettings.foot_distance", s.foot_distance);
-  non_negative("WalkingSettings.security_margin[0]", s.security_margin[0]);
-  non_negative("WalkingSettings.security_margin[1]", s.security_margin[1]);
+  check_non_negative("WalkingSettings.step_height", s.step_height);
+  check_positive("WalkingSettings.foot_width", s.foot_width);
+  check_positive("WalkingSettings.foot_length", s.foot_length);
+  check_positive("WalkingSettings.foot_distance", s.foot_distance);
+  check_non_negative("WalkingSettings.security_margin[0]", s.security_margin[0]);
+  check_non_negative("WalkingSettings.security_margin[1]", s.security_margin[1]);
   check_argument(Scalar(2) * s.security_margin[0] < s.foot_length,
                  "WalkingSettings.security_margin[0]", "less than half the foot length",
                  s.security_margin[0], "the shrunk support polygon would be empty");
@@ -205,23 +199,23 @@ void validate(const WalkingSettings<Scalar>& s) {
   check_convex_polygon("WalkingSettings.right_foot_convex_hull", s.right_foot_convex_hull);
   check_argument(s.com_x.allFinite() && s.com_y.allFinite() && s.com_q.allFinite(),
                  "WalkingSettings.com_x/com_y/com_q", "finite values", "NaN or inf");
-  positive("WalkingSettings.com_z", s.com_z);
+  check_positive("WalkingSettings.com_z", s.com_z);
   check_argument(std::isfinite(s.foot_x) && std::isfinite(s.foot_y) && std::isfinite(s.foot_q),
                  "WalkingSettings.foot_x/foot_y/foot_q", "finite values", "NaN or inf");
-  positive("WalkingSettings.gravity", s.gravity);
-  non_negative("WalkingSettings.alpha", s.alpha);
-  non_negative("WalkingSettings.beta", s.beta);
-  positive("WalkingSettings.gamma", s.gamma);  // strict convexity of the QP
+  check_positive("WalkingSettings.gravity", s.gravity);
+  check_non_negative("WalkingSettings.alpha", s.alpha);
+  check_non_negative("WalkingSettings.beta", s.beta);
+  check_positive("WalkingSettings.gamma", s.gamma);  // strict convexity of the QP
   check_argument(s.nwsr >= 1, "WalkingSettings.nwsr", "at least 1 active-set change", s.nwsr);
-  positive("WalkingSettings.max_relative_yaw", s.max_relative_yaw);
-  positive("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate);
+  check_positive("WalkingSettings.max_relative_yaw", s.max_relative_yaw);
+  check_positive("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate);
   check_argument(s.sqp_iterations >= 1, "WalkingSettings.sqp_iterations", "at least 1",
                  s.sqp_iterations);
   for (const auto& o : s.obstacles) {
     check_argument(std::isfinite(o.x) && std::isfinite(o.y), "WalkingSettings.obstacles[].x/y",
                    "a finite centre", "NaN or inf");
-    positive("WalkingSettings.obstacles[].radius", o.radius);
-    non_negative("WalkingSettings.obstacles[].margin", o.margin);
+    check_positive("WalkingSettings.obstacles[].radius", o.radius);
+    check_non_negative("WalkingSettings.obstacles[].margin", o.margin);
   }
 }
 
