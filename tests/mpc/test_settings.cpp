@@ -64,7 +64,7 @@ TEST(WalkingSettings, BadValuesAreRejectedNamingTheKey) {
       {"WalkingSettings.n", [](Settings& s) { s.n = 0; }},
       {"WalkingSettings.t", [nan](Settings& s) { s.t = nan; }},
       {"WalkingSettings.t_step", [](Settings& s) { s.t_step = 0.75; }},
-      {"WalkingSettings.n", [](Settings& s) { s.n = 7; }},  // horizon shorter than a step
+      {"WalkingSettings.n", [](Settings& s) { s.n = 1; }},  // horizon reaches no next step
       {"WalkingSettings.t_ds", [](Settings& s) { s.t_ds = 0.8; }},
       {"WalkingSettings.command_period", [](Settings& s) { s.command_period = 0.03; }},
       {"WalkingSettings.security_margin[0]", [](Settings& s) { s.security_margin[0] = 0.11; }},

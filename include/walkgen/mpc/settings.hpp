@@ -104,15 +104,37 @@ struct WalkingSettings {
   int nwsr = 100;
 
   // --- Limits hard-coded in the thesis's code, made settings here --------------------------------
-  Scalar max_relative_yaw = Scalar(0.09);       ///< [rad] |θ_L − θ_R| (eq. 2.73)
-  Scalar max_relative_yaw_rate = Scalar(0.22);  ///< [rad/s] |θ̇_L − θ̇_R| (eq. 2.74)
+  /// [rad] |θ_L − θ_R| between the feet at every instant (eq. 2.73). A turn at ω needs
+  /// ω·t_step between consecutive footsteps: 0.16 rad for the 0.2 rad/s turn at t_step 0.8 s,
+  /// which the thesis code's 0.09 rad could never allow (its HRP-2 turned at half the command).
+  Scalar max_relative_yaw = Scalar(0.25);
+  /// [rad/s] peak |θ̇_L − θ̇_R| (eq. 2.74): the swing foot's yaw rate relative to the support
+  /// foot on its 5th-order yaw polynomial, 15/8 · Δθ / (t_step − t_ds). The 0.2 rad/s turn at
+  /// HRP-2's timing needs 1.5 rad/s (Δθ = 0.32 rad in 0.4 s).
+  Scalar max_relative_yaw_rate = Scalar(2.0);
+  /// Largest accepted velocity command (|v_x| [m/s], |v_y| [m/s], |ω_z| [rad/s]); larger or
+  /// non-finite commands are rejected with a status and the previous command is kept.
+  Vector3 max_command = Vector3(Scalar(0.4), Scalar(0.2), Scalar(0.4));
+  /// Proximal weight on the footstep variables (x, y, yaw) toward the previous plan. Keeps the
+  /// QP strictly convex when the last planned step has no ZMP sample in the horizon (at the
+  /// first sample of every step); small enough not to move a step that the cost determines.
+  Scalar footstep_regularization = Scalar(1e-9);
+  /// [m] optional ZMP support polygon of the left foot, in its foot frame (E × 2, convex); the
+  /// right foot's is its mirror image. Empty: the foot_length × foot_width rectangle shrunk by
+  /// security_margin (fig. 6.4). Its edge count must match the generator's FootEdges.
+  Polygon zmp_polygon;
   /// Gauss–Newton iterations per tick: 1 is the real-time iteration (eq. 2.83–2.89).
   int sqp_iterations = 1;
 
   /// Samples of the preview horizon per step, t_step / t (an integer after validate()).
   int samples_per_step() const { return static_cast<int>(std::lround(t_step / t)); }
-  /// Footsteps planned within the horizon, ⌊N T / t_step⌋ (N_f in the thesis).
-  int planned_steps() const { return n / samples_per_step(); }
+  /// Footsteps planned within the horizon (N_f in the thesis): the most steps after the current
+  /// one that N samples can reach, ⌊(N + S − 2) / S⌋ with S = samples_per_step(); the thesis's
+  /// ⌊N T / t_step⌋ for a whole number of steps.
+  int planned_steps() const {
+    const int S = samples_per_step();
+    return (n + S - 2) / S;
+  }
 };
 
 /// HRP-2 (thesis §9.1, figures 9.1–9.3): the in-class defaults.
@@ -174,7 +196,10 @@ void validate(const WalkingSettings<Scalar>& s) {
       s.planned_steps() >= 1, "WalkingSettings.n",
       "a horizon n·t covering at least one step (t_step = " + std::to_string(s.t_step) + " s)", s.n,
       "increase n or shorten t_step");
-  check_non_negative("WalkingSettings.t_ds", s.t_ds);
+  check_argument(std::isfinite(s.t_ds) && s.t_ds >= s.t * (Scalar(1) - Scalar(1e-9)),
+                 "WalkingSettings.t_ds",
+                 "a double support of at least t = " + std::to_string(s.t) + " s", s.t_ds,
+                 "the ZMP moves to the new foot during the first interval of every step");
   check_argument(s.t_ds < s.t_step, "WalkingSettings.t_ds", "a double support shorter than t_step",
                  s.t_ds);
   check_positive("WalkingSettings.command_period", s.command_period);
@@ -211,6 +236,10 @@ void validate(const WalkingSettings<Scalar>& s) {
   check_positive("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate);
   check_argument(s.sqp_iterations >= 1, "WalkingSettings.sqp_iterations", "at least 1",
                  s.sqp_iterations);
+  check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all(),
+                 "WalkingSettings.max_command", "finite limits >= 0", "NaN, inf or negative");
+  check_non_negative("WalkingSettings.footstep_regularization", s.footstep_regularization);
+  if (s.zmp_polygon.rows() > 0) check_convex_polygon("WalkingSettings.zmp_polygon", s.zmp_polygon);
   for (const auto& o : s.obstacles) {
     check_argument(std::isfinite(o.x) && std::isfinite(o.y), "WalkingSettings.obstacles[].x/y",
                    "a finite centre", "NaN or inf");

@@ -1,0 +1,754 @@
+#pragma once
+/// @file
+/// The NMPC walking pattern generator of thesis §2.2 and §6: a linear inverted pendulum preview
+/// over N samples, CoM jerks and footsteps (position and yaw) as decision variables, the ZMP in
+/// the rotated, margin-shrunk support polygon, footsteps in the feasibility polygon of the
+/// foot they are planned from, relative foot yaw and yaw-rate limits, circular obstacles, and a
+/// Gauss–Newton SQP (one step per tick: the real-time iteration) around walkgen's DenseQp.
+///
+/// Decision vector (one tick, n = 2(N + N_f) + N_f):
+///   U = ( jerk_x[0..N) | F_x[1..N_f] | jerk_y[0..N) | F_y[1..N_f] | F_q[1..N_f] )
+/// CoM jerks as in eq. 2.53; footstep yaws F_q are the foot orientations (see docs/thesis-map.md
+/// for how they relate to the thesis's foot-yaw jerks of eq. 2.54).
+///
+/// Timing: a step of S = t_step / t samples begins with double support. With `phase` p samples
+/// of the current step elapsed, horizon sample j (0-based, time t_k + (j+1)t) belongs to step
+/// ⌊(p + j) / S⌋: step 0 is the current support foot, step i ≥ 1 the i-th planned footstep
+/// (the selection v/V of eq. 2.47–2.49). The ZMP therefore moves onto a new foot during the
+/// first interval of every step, inside double support (t_ds ≥ t is validated).
+///
+/// Use (convention 13: the block steps, the application owns the loop):
+/// @code
+///   walkgen::WalkingMpc<double, 16> mpc(walkgen::hrp2_settings());
+///   mpc.set_command({0.1, 0.0, 0.0});          // v_x, v_y [m/s], ω_z [rad/s], robot frame
+///   for (;;) {
+///     const auto& r = mpc.solve();             // r.status: solved / qp_failed (safe plan kept)
+///     interpolator.interpolate(mpc, samples);  // command-period samples of this tick
+///     mpc.advance();                           // state moves one t forward along the plan
+///   }
+/// @endcode
+/// Allocation: the constructor sizes everything; solve(), advance(), set_command(), set_state()
+/// and set_obstacles() never touch the heap (tests/mpc/test_walking_mpc_no_alloc.cpp).
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/foot.hpp"
+#include "walkgen/interpolation/swing_foot.hpp"
+#include "walkgen/model/lipm.hpp"
+#include "walkgen/model/support_polygon.hpp"
+#include "walkgen/mpc/settings.hpp"
+#include "walkgen/qp/dense_qp.hpp"
+
+namespace walkgen {
+
+/// Outcome of one generator tick.
+enum class MpcStatus : std::uint8_t {
+  solved,     ///< every SQP iteration's QP solved; the plan is the new solution
+  qp_failed,  ///< a QP failed (see Result::qp_status); the plan is the previous one, shifted
+};
+
+/// What happened to a velocity command.
+enum class CommandStatus : std::uint8_t {
+  accepted,      ///< in use from the next solve()
+  non_finite,    ///< NaN or inf: rejected, the previous command stays
+  out_of_range,  ///< beyond WalkingSettings::max_command: rejected, the previous command stays
+};
+
+inline const char* to_string(MpcStatus s) {
+  return s == MpcStatus::solved ? "solved" : "qp_failed";
+}
+inline const char* to_string(CommandStatus s) {
+  switch (s) {
+    case CommandStatus::accepted:
+      return "accepted";
+    case CommandStatus::non_finite:
+      return "non_finite";
+    case CommandStatus::out_of_range:
+      return "out_of_range";
+  }
+  return "unknown";
+}
+
+/// The generator's state at a tick (section 6.3's PatternGeneratorState). Feedback may overwrite
+/// it between ticks with set_state(), e.g. the CoM from forward kinematics.
+template <typename Scalar = double>
+struct WalkingState {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  Vector3 com_x = Vector3::Zero();  ///< CoM x, ẋ, ẍ [m, m/s, m/s²], world frame
+  Vector3 com_y = Vector3::Zero();  ///< CoM y, ẏ, ÿ
+  Foot support_foot = Foot::left;   ///< the foot on the ground in single support
+  FootPose<Scalar> support;         ///< its pose
+  FootPose<Scalar> swing_origin;    ///< where the swing foot lifts off (stands in double support)
+  FootMotion<Scalar> swing;         ///< the swing foot's motion now
+  int phase = 0;                    ///< samples of the current step elapsed, 0 ≤ phase < S
+  Scalar time = Scalar(0);          ///< [s] since the start
+  long step_count = 0;              ///< steps completed since the start
+
+  /// Heading of the robot [rad]: the mean of the two feet's yaws.
+  Scalar heading() const { return (support.q + swing.q.position) / Scalar(2); }
+};
+
+/// The plan of the last solve(): the decision vector U and views on its parts.
+template <typename Scalar = double>
+struct WalkingPlan {
+  using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  VectorX U;  ///< see the file comment for the layout
+  int N = 0, nf = 0;
+
+  Scalar jerk_x(int j) const { return U[j]; }
+  Scalar jerk_y(int j) const { return U[N + nf + j]; }
+  /// Planned footstep i = 1..nf.
+  FootPose<Scalar> footstep(int i) const {
+    return {U[N + i - 1], U[2 * N + nf + i - 1], U[2 * (N + nf) + i - 1]};
+  }
+};
+
+/// Result of solve().
+template <typename Scalar = double>
+struct MpcResult {
+  MpcStatus status = MpcStatus::solved;
+  QpStatus qp_status = QpStatus::unsolved;  ///< status of the last QP solved in this tick
+  const char* message = "";                 ///< the QP's message when it failed
+  int sqp_iterations = 0;                   ///< Gauss–Newton iterations done
+  int qp_iterations = 0;                    ///< active-set changes, summed over the iterations
+  Scalar primal_residual = Scalar(0);       ///< of the last QP (linearised constraints)
+  CommandStatus last_command = CommandStatus::accepted;  ///< the last set_command() outcome
+  Eigen::Matrix<Scalar, 3, 1> command = Eigen::Matrix<Scalar, 3, 1>::Zero();  ///< in use
+};
+
+/// The generator.
+/// @tparam Scalar    floating-point type
+/// @tparam N         preview samples (WalkingSettings::n), or Eigen::Dynamic
+/// @tparam FootEdges edges of the ZMP support polygon (4 for the rectangular sole), or Dynamic
+/// @tparam HullEdges edges of the footstep feasibility polygons, or Eigen::Dynamic
+template <typename Scalar = double, int N = Eigen::Dynamic, int FootEdges = 4, int HullEdges = 5>
+class WalkingMpc {
+  static_assert(std::is_floating_point<Scalar>::value,
+                "walkgen: WalkingMpc needs a floating-point Scalar");
+  static_assert(N > 0 || N == Eigen::Dynamic,
+                "walkgen: WalkingMpc's horizon N must be positive or Eigen::Dynamic");
+  static_assert(FootEdges >= 3 || FootEdges == Eigen::Dynamic,
+                "walkgen: WalkingMpc's FootEdges must be >= 3 or Eigen::Dynamic");
+  static_assert(HullEdges >= 3 || HullEdges == Eigen::Dynamic,
+                "walkgen: WalkingMpc's HullEdges must be >= 3 or Eigen::Dynamic");
+
+ public:
+  using Index = Eigen::Index;
+  using Settings = WalkingSettings<Scalar>;
+  using State = WalkingState<Scalar>;
+  using Plan = WalkingPlan<Scalar>;
+  using Result = MpcResult<Scalar>;
+  using Obstacle = CircleObstacle<Scalar>;
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using MatrixX = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using RowMatrixX = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  using HorizonVector = Eigen::Matrix<Scalar, N, 1>;
+  using FootPolygon = Eigen::Matrix<Scalar, FootEdges, 2>;
+  using FootRhs = Eigen::Matrix<Scalar, FootEdges, 1>;
+  using HullPolygon = Eigen::Matrix<Scalar, HullEdges, 2>;
+  using HullRhs = Eigen::Matrix<Scalar, HullEdges, 1>;
+
+  /// Builds the generator: validates the settings, precomputes the preview matrices and the
+  /// polygons' half-planes, sizes the QP.
+  /// @param obstacle_capacity most obstacles set_obstacles() will be given (at least the
+  ///        settings' own); rows for them are reserved now so that no tick allocates.
+  /// @throws walkgen::invalid_argument on invalid settings or sizes that contradict N,
+  ///         FootEdges or HullEdges.
+  explicit WalkingMpc(const Settings& settings, Index obstacle_capacity = 0)
+      : s_(checked(settings)),
+        S_(s_.samples_per_step()),
+        N_(s_.n),
+        nf_(s_.planned_steps()),
+        cap_obstacles_(std::max<Index>(obstacle_capacity, Index(s_.obstacles.size()))),
+        foot_edges_(s_.zmp_polygon.rows() > 0 ? s_.zmp_polygon.rows() : 4),
+        hull_edges_(s_.left_foot_convex_hull.rows()),
+        lipm_(s_.t, s_.com_z, s_.gravity, s_.n),
+        step_(s_.t),
+        qp_(num_vars(), num_rows()) {
+    set_polygons();
+    const Index n = num_vars(), m = num_rows();
+    H_.setZero(n, n);
+    g_.setZero(n);
+    A_.setZero(m, n);
+    lb_.setZero(m);
+    ub_.setZero(m);
+    l_.setConstant(n, -kInf);
+    u_.setConstant(n, kInf);
+    Zx_.setZero(N_);
+    Zy_.setZero(N_);
+    U_prev_.setZero(n);
+    step_of_.resize(N_);
+    obstacles_.reserve(static_cast<std::size_t>(cap_obstacles_));
+    obstacles_ = s_.obstacles;
+    // Constant Hessian blocks (eq. 2.56): α P_vuᵀP_vu + β P_zuᵀP_zu + γ I and the yaw block.
+    ref_x_.setZero(N_);
+    ref_y_.setZero(N_);
+    HUU_ = s_.alpha * lipm_.P_vu.transpose() * lipm_.P_vu +
+           s_.beta * lipm_.P_zu.transpose() * lipm_.P_zu;
+    HUU_.diagonal().array() += s_.gamma;
+    D_.setZero(nf_, nf_);  // (Dθ)_i = θ_i − θ_{i−1}
+    for (Index i = 0; i < nf_; ++i) {
+      D_(i, i) = Scalar(1);
+      if (i > 0) D_(i, i - 1) = Scalar(-1);
+    }
+    Hqq_ = yaw_weight() * D_.transpose() * D_;
+    Hqq_.diagonal().array() += s_.footstep_regularization;
+    yaw_target_.setZero(nf_);
+    qp_.settings().max_iterations = s_.nwsr;
+    reset(initial_state(s_));
+  }
+
+  // --- Sizes -------------------------------------------------------------------------------------
+  Index horizon() const { return N_; }
+  Index planned_steps() const { return nf_; }
+  Index samples_per_step() const { return S_; }
+  Index num_vars() const { return 2 * (N_ + nf_) + nf_; }
+  Index num_rows() const {
+    return N_ * foot_edges() + nf_ * hull_edges() + 2 * nf_ + nf_ * cap_obstacles_;
+  }
+  Index obstacle_capacity() const { return cap_obstacles_; }
+
+  // --- Inputs ------------------------------------------------------------------------------------
+  /// Velocity command (v_x, v_y [m/s], ω_z [rad/s]) in the robot's frame (the heading).
+  /// Non-finite or out-of-range commands are rejected (the previous one stays) and reported.
+  CommandStatus set_command(const Vector3& command) {
+    CommandStatus status = CommandStatus::accepted;
+    if (!command.allFinite()) {
+      status = CommandStatus::non_finite;
+    } else if ((command.cwiseAbs().array() > s_.max_command.array()).any()) {
+      status = CommandStatus::out_of_range;
+    } else {
+      command_ = command;
+    }
+    result_.last_command = status;
+    result_.command = command_;
+    return status;
+  }
+  const Vector3& command() const { return command_; }
+
+  /// Overwrites the state (feedback, section 6.3).
+  /// @throws walkgen::invalid_argument if a value is non-finite or the phase is out of range
+  ///         (the state is left unchanged).
+  void set_state(const State& state) {
+    if (state.phase < 0 || state.phase >= S_) {  // the message is built only on failure
+      check_argument(false, "WalkingMpc::set_state: phase",
+                     "0 <= phase < samples_per_step() = " + std::to_string(S_), state.phase);
+    }
+    check_argument(finite_state(state), "WalkingMpc::set_state", "finite values", "NaN or inf",
+                   "check the feedback (forward kinematics) that produced the state");
+    state_ = state;
+  }
+  /// Restarts from `state`: also forgets the plan and the QP's warm start.
+  void reset(const State& state) {
+    set_state(state);
+    initial_plan();
+    qp_.reset_warm_start();
+  }
+
+  /// Replaces the obstacles (world frame). No allocation up to obstacle_capacity().
+  /// @throws walkgen::invalid_argument beyond the capacity or on invalid obstacles.
+  template <typename Container>
+  void set_obstacles(const Container& obstacles) {
+    if (Index(obstacles.size()) > cap_obstacles_) {  // the message is built only on failure
+      check_argument(false, "WalkingMpc::set_obstacles",
+                     "at most obstacle_capacity() = " + std::to_string(cap_obstacles_),
+                     obstacles.size(), "pass a larger obstacle_capacity to the constructor");
+    }
+    for (const auto& o : obstacles) {
+      check_argument(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.radius) &&
+                         o.radius > Scalar(0) && std::isfinite(o.margin) && o.margin >= Scalar(0),
+                     "WalkingMpc::set_obstacles", "finite centres, radius > 0, margin >= 0",
+                     "an invalid obstacle");
+    }
+    obstacles_.assign(obstacles.begin(), obstacles.end());
+  }
+  const std::vector<Obstacle>& obstacles() const { return obstacles_; }
+
+  // --- Tick --------------------------------------------------------------------------------------
+  /// Plans from the current state: sqp_iterations Gauss–Newton steps (eq. 2.83–2.89), each a QP
+  /// linearised at the current iterate (the previous plan, shifted, on the first). A failed QP is
+  /// never applied: the plan stays the previous iterate and the status says qp_failed.
+  const Result& solve() {
+    result_.status = MpcStatus::solved;
+    result_.sqp_iterations = 0;
+    result_.qp_iterations = 0;
+    result_.message = "";
+    prepare_tick();
+    for (int it = 0; it < s_.sqp_iterations; ++it) {
+      assemble();
+      QpStatus st = qp_.init(H_, g_, A_, lb_, ub_, l_, u_);
+      if (st != QpStatus::invalid_input) st = qp_.solve().status;
+      const auto& qr = qp_.result();
+      result_.qp_status = st;
+      result_.qp_iterations += qr.iterations;
+      result_.primal_residual = qr.primal_residual;
+      ++result_.sqp_iterations;
+      if (st != QpStatus::solved) {
+        result_.status = MpcStatus::qp_failed;
+        result_.message = qr.message;
+        qp_.reset_warm_start();
+        break;
+      }
+      plan_.U = qr.x;
+    }
+    return result_;
+  }
+
+  /// Moves the state one preview period t forward along the plan: CoM by the LIPM with the
+  /// first jerk, the swing foot along its polynomials; at the end of a step the swing foot lands
+  /// on the first planned footstep, which becomes the support foot, and the plan shifts.
+  void advance() {
+    state_.com_x = step_.advance(state_.com_x, plan_.jerk_x(0));
+    state_.com_y = step_.advance(state_.com_y, plan_.jerk_y(0));
+    const StepTiming<Scalar> timing = step_timing();
+    const Scalar tau0 = Scalar(state_.phase) * s_.t;
+    const FootPose<Scalar> target = plan_.footstep(1);
+    state_.swing = swing_foot_sample(timing, state_.swing, tau0, target, tau0 + s_.t).motion;
+    state_.time += s_.t;
+    shift_jerks();
+    if (++state_.phase < S_) return;
+    // The swing foot lands: it supports the next step; the old support foot will swing.
+    state_.phase = 0;
+    ++state_.step_count;
+    state_.swing_origin = state_.support;
+    state_.swing = FootMotion<Scalar>::at_rest(state_.support);
+    state_.support = target;
+    state_.support_foot = other(state_.support_foot);
+    shift_footsteps();
+  }
+
+  // --- Outputs -----------------------------------------------------------------------------------
+  const State& state() const { return state_; }
+  const Plan& plan() const { return plan_; }
+  const Result& result() const { return result_; }
+  const Settings& settings() const { return s_; }
+  const LipmPreview<Scalar, N>& preview() const { return lipm_; }
+  StepTiming<Scalar> step_timing() const { return {s_.t_ds, s_.t_step, s_.step_height}; }
+  /// Step of horizon sample j (0 = current support, i = i-th planned footstep); valid after
+  /// solve() for the state it planned from.
+  int step_of_sample(Index j) const { return step_of_[j]; }
+  /// Which foot stands in step i (0 = current support).
+  Foot foot_of_step(Index i) const {
+    return (i % 2 == 0) ? state_.support_foot : other(state_.support_foot);
+  }
+  /// ZMP support polygon half-planes A z ≤ b of `foot` in its own frame (shrunk by the margin).
+  const FootPolygon& zmp_A(Foot foot) const { return foot_A_[index(foot)]; }
+  const FootRhs& zmp_b(Foot foot) const { return foot_b_[index(foot)]; }
+  /// Feasibility half-planes of the region where `landing` may land, in the frame of the other
+  /// foot.
+  const HullPolygon& hull_A(Foot landing) const { return hull_A_[index(landing)]; }
+  const HullRhs& hull_b(Foot landing) const { return hull_b_[index(landing)]; }
+
+  /// The QP of the last SQP iteration (H, g, A, lb ≤ A U ≤ ub, l ≤ U ≤ u): for tests and
+  /// diagnostics (e.g. Jacobians against finite differences).
+  const MatrixX& qp_H() const { return H_; }
+  const VectorX& qp_g() const { return g_; }
+  const RowMatrixX& qp_A() const { return A_; }
+  const VectorX& qp_lb() const { return lb_; }
+  const VectorX& qp_ub() const { return ub_; }
+
+  /// The nonlinear constraint functions c(U) of eq. 2.65–2.82 for the current state, written as
+  /// lb_c ≤ c(U) ≤ ub_c with the same rows as the QP: the QP's rows are their Gauss–Newton
+  /// linearisation at the iterate, A = ∂c/∂U. For tests; allocation-free.
+  void constraint_values(const VectorX& U, VectorX& c, VectorX& lower, VectorX& upper) const {
+    linearise(U, nullptr, &c, lower, upper);
+  }
+  /// The Jacobian ∂c/∂U at U (the QP's constraint matrix when U is the iterate); lower/upper
+  /// receive the QP's row bounds for that linearisation.
+  void constraint_jacobian(const VectorX& U, RowMatrixX& J, VectorX& lower, VectorX& upper) const {
+    linearise(U, &J, nullptr, lower, upper);
+  }
+
+  /// Builds the initial state of a settings set: CoM from com_x/com_y, support foot at
+  /// (foot_x, foot_y, foot_q), the other foot foot_distance beside it, standing.
+  static State initial_state(const Settings& s) {
+    State st;
+    st.com_x = s.com_x;
+    st.com_y = s.com_y;
+    st.support_foot = s.support_foot;
+    st.support = {s.foot_x, s.foot_y, s.foot_q};
+    st.swing_origin = beside(st.support, s.support_foot, s.foot_distance);
+    st.swing = FootMotion<Scalar>::at_rest(st.swing_origin);
+    return st;
+  }
+
+ private:
+  /// The pose `distance` beside foot pose p (of foot `foot`), on the other foot's side.
+  static FootPose<Scalar> beside(const FootPose<Scalar>& p, Foot foot, Scalar distance) {
+    using std::cos;
+    using std::sin;
+    const Scalar side = foot == Foot::left ? Scalar(-1) : Scalar(1);
+    return {p.x - side * distance * sin(p.q), p.y + side * distance * cos(p.q), p.q};
+  }
+
+  static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
+  static int index(Foot f) { return f == Foot::left ? 0 : 1; }
+
+  static const Settings& checked(const Settings& s) {
+    validate(s);
+    check_argument(N == Eigen::Dynamic || s.n == N, "WalkingMpc: settings.n",
+                   "the template horizon N = " + std::to_string(N), s.n,
+                   "use WalkingMpc<Scalar, Eigen::Dynamic> for a horizon known at run time");
+    const Index foot = s.zmp_polygon.rows() > 0 ? s.zmp_polygon.rows() : 4;
+    check_argument(FootEdges == Eigen::Dynamic || foot == FootEdges,
+                   "WalkingMpc: ZMP polygon edges", "FootEdges = " + std::to_string(FootEdges),
+                   foot, "the default sole is a rectangle: 4 edges, or set zmp_polygon");
+    check_argument(s.left_foot_convex_hull.rows() == s.right_foot_convex_hull.rows(),
+                   "WalkingMpc: right_foot_convex_hull",
+                   "as many vertices as left_foot_convex_hull", s.right_foot_convex_hull.rows());
+    for (const auto* hull : {&s.left_foot_convex_hull, &s.right_foot_convex_hull}) {
+      check_argument(HullEdges == Eigen::Dynamic || hull->rows() == HullEdges,
+                     "WalkingMpc: feasibility hull edges",
+                     "HullEdges = " + std::to_string(HullEdges), hull->rows());
+    }
+    return s;
+  }
+
+  /// Weight of the yaw-rate tracking per footstep: α per horizon sample, as eq. 2.44 sums the
+  /// rate error over the S samples of a step, divided by t_step² to turn yaw steps into rates.
+  Scalar yaw_weight() const { return s_.alpha * Scalar(S_) / (s_.t_step * s_.t_step); }
+
+  /// Reference velocity at horizon sample j + 1: the command rotated along the reference
+  /// heading, R(h + ω t (j + 1)) v (eq. 2.43; the thesis keeps the heading constant over the
+  /// horizon, which makes curved walks lag).
+  void reference(Index j, Scalar heading, Scalar& rx, Scalar& ry) const {
+    using std::cos;
+    using std::sin;
+    const Scalar q = heading + command_[2] * s_.t * Scalar(j + 1);
+    rx = command_[0] * cos(q) - command_[1] * sin(q);
+    ry = command_[0] * sin(q) + command_[1] * cos(q);
+  }
+
+  Index foot_edges() const { return foot_edges_; }
+  Index hull_edges() const { return hull_edges_; }
+
+  void set_polygons() {
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 2> sole = s_.zmp_polygon;
+    if (sole.rows() == 0) {
+      const Scalar hx = s_.foot_length / Scalar(2) - s_.security_margin[0];
+      const Scalar hy = s_.foot_width / Scalar(2) - s_.security_margin[1];
+      sole.resize(4, 2);
+      sole << hx, hy, -hx, hy, -hx, -hy, hx, -hy;
+    }
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 2> mirrored = sole;
+    mirrored.col(1) *= Scalar(-1);
+    for (int f = 0; f < 2; ++f) {
+      foot_A_[f].resize(sole.rows(), 2);
+      foot_b_[f].resize(sole.rows());
+      polygon_halfplanes(f == 0 ? sole : mirrored, foot_A_[f], foot_b_[f]);
+      const auto& hull = f == 0 ? s_.left_foot_convex_hull : s_.right_foot_convex_hull;
+      hull_A_[f].resize(hull.rows(), 2);
+      hull_b_[f].resize(hull.rows());
+      polygon_halfplanes(hull, hull_A_[f], hull_b_[f]);
+    }
+  }
+
+  static bool finite_state(const State& st) {
+    using std::isfinite;
+    auto pose_ok = [](const FootPose<Scalar>& p) {
+      return isfinite(p.x) && isfinite(p.y) && isfinite(p.q);
+    };
+    auto s3_ok = [](const Sample3<Scalar>& s) {
+      return isfinite(s.position) && isfinite(s.velocity) && isfinite(s.acceleration);
+    };
+    return st.com_x.allFinite() && st.com_y.allFinite() && pose_ok(st.support) &&
+           pose_ok(st.swing_origin) && s3_ok(st.swing.x) && s3_ok(st.swing.y) &&
+           s3_ok(st.swing.q) && isfinite(st.time);
+  }
+
+  // Variable offsets.
+  Index ix_u() const { return 0; }
+  Index ix_f() const { return N_; }
+  Index iy_u() const { return N_ + nf_; }
+  Index iy_f() const { return 2 * N_ + nf_; }
+  Index iq_f() const { return 2 * (N_ + nf_); }
+
+  /// A plan standing in place: zero jerks, footsteps alternating on the two current feet.
+  void initial_plan() {
+    plan_.N = int(N_);
+    plan_.nf = int(nf_);
+    plan_.U.setZero(num_vars());
+    for (Index i = 1; i <= nf_; ++i) {
+      const FootPose<Scalar>& p = (i % 2 == 1) ? state_.swing_origin : state_.support;
+      plan_.U[ix_f() + i - 1] = p.x;
+      plan_.U[iy_f() + i - 1] = p.y;
+      plan_.U[iq_f() + i - 1] = p.q;
+    }
+  }
+
+  void shift_jerks() {
+    for (Index base : {ix_u(), iy_u()}) {
+      for (Index j = 0; j + 1 < N_; ++j) plan_.U[base + j] = plan_.U[base + j + 1];
+      plan_.U[base + N_ - 1] = Scalar(0);
+    }
+  }
+
+  /// After a landing: footstep i+1 becomes i. The new last footstep is guessed one stride
+  /// beyond the same foot's previous step, F_nf = F_{nf−2} + (F_{nf−1} − F_{nf−3}) with F_0 the
+  /// new support foot and F_{−1} the swing origin; with one planned step, beside the support.
+  void shift_footsteps() {
+    for (Index base : {ix_f(), iy_f(), iq_f()}) {
+      for (Index i = 1; i < nf_; ++i) plan_.U[base + i - 1] = plan_.U[base + i];
+    }
+    auto pose = [&](Index i) -> FootPose<Scalar> {
+      if (i == 0) return state_.support;
+      if (i < 0) return state_.swing_origin;
+      return plan_.footstep(int(i));
+    };
+    FootPose<Scalar> guess;
+    if (nf_ >= 2) {
+      const FootPose<Scalar> a = pose(nf_ - 2), b = pose(nf_ - 1), c = pose(nf_ - 3);
+      guess = {a.x + b.x - c.x, a.y + b.y - c.y, a.q + b.q - c.q};
+    } else {
+      guess = beside(state_.support, state_.support_foot, s_.foot_distance);
+    }
+    plan_.U[ix_f() + nf_ - 1] = guess.x;
+    plan_.U[iy_f() + nf_ - 1] = guess.y;
+    plan_.U[iq_f() + nf_ - 1] = guess.q;
+  }
+
+  /// Per-tick data that do not depend on the iterate: step membership, velocity references,
+  /// frozen landing footstep.
+  void prepare_tick() {
+    for (Index j = 0; j < N_; ++j) step_of_[j] = int((state_.phase + j) / S_);
+    using std::cos;
+    using std::sin;
+    const Scalar heading = state_.heading();
+    for (Index j = 0; j < N_; ++j) reference(j, heading, ref_x_[j], ref_y_[j]);
+    // In the last interval before landing the footstep is fixed: the foot is about to touch.
+    const bool frozen = state_.phase == S_ - 1;
+    for (Index base : {ix_f(), iy_f(), iq_f()}) {
+      l_[base] = frozen ? plan_.U[base] : -kInf;
+      u_[base] = frozen ? plan_.U[base] : kInf;
+    }
+    // Yaw tracking target: consecutive footsteps ω·t_step apart (eq. 2.44, see thesis-map).
+    yaw_target_.setConstant(command_[2] * s_.t_step);
+    yaw_target_[0] += state_.support.q;
+  }
+
+  /// Cost (eq. 2.51–2.60, gradient corrected per DESIGN.md §5) and linearised constraints
+  /// (eq. 2.84–2.88) at the iterate plan_.U.
+  void assemble() {
+    U_prev_ = plan_.U;
+    const Scalar a = s_.alpha, b = s_.beta, eps = s_.footstep_regularization;
+    // Hessian: x and y blocks share  [HUU, −β P_zuᵀV; −β VᵀP_zu, β VᵀV + ε].
+    H_.setZero();
+    for (Index axis = 0; axis < 2; ++axis) {
+      const Index u0 = axis == 0 ? ix_u() : iy_u(), f0 = axis == 0 ? ix_f() : iy_f();
+      H_.block(u0, u0, N_, N_) = HUU_;
+      for (Index j = 0; j < N_; ++j) {
+        const int s = step_of_[j];
+        if (s == 0) continue;
+        for (Index c = 0; c <= j; ++c) {
+          const Scalar v = -b * lipm_.P_zu(j, c);
+          H_(u0 + c, f0 + s - 1) += v;
+          H_(f0 + s - 1, u0 + c) += v;
+        }
+        H_(f0 + s - 1, f0 + s - 1) += b;
+      }
+      for (Index i = 0; i < nf_; ++i) H_(f0 + i, f0 + i) += eps;
+    }
+    H_.block(iq_f(), iq_f(), nf_, nf_) = Hqq_;
+    // Gradient.
+    for (Index axis = 0; axis < 2; ++axis) {
+      const Index u0 = axis == 0 ? ix_u() : iy_u(), f0 = axis == 0 ? ix_f() : iy_f();
+      const auto& c = axis == 0 ? state_.com_x : state_.com_y;
+      const VectorX& ref = axis == 0 ? ref_x_ : ref_y_;
+      const Scalar f = axis == 0 ? state_.support.x : state_.support.y;
+      VectorX& z = axis == 0 ? Zx_ : Zy_;  // scratch: P_zs c − v f, then velocity error
+      z.noalias() = lipm_.P_zs * c;
+      for (Index j = 0; j < N_; ++j) {
+        if (step_of_[j] == 0) z[j] -= f;
+      }
+      auto gu = g_.segment(u0, N_);
+      gu.noalias() = b * lipm_.P_zu.transpose() * z;
+      for (Index i = 0; i < nf_; ++i) g_[f0 + i] = -eps * U_prev_[f0 + i];
+      for (Index j = 0; j < N_; ++j) {
+        const int s = step_of_[j];
+        if (s > 0) g_[f0 + s - 1] -= b * z[j];
+      }
+      z.noalias() = lipm_.P_vs * c;  // velocity error at U = 0
+      z -= ref;
+      gu.noalias() += a * lipm_.P_vu.transpose() * z;
+    }
+    {
+      const Scalar w = yaw_weight();
+      auto gq = g_.segment(iq_f(), nf_);
+      gq.noalias() = -w * D_.transpose() * yaw_target_;
+      gq -= eps * U_prev_.segment(iq_f(), nf_);
+    }
+    linearise(U_prev_, &A_, nullptr, lb_, ub_);
+  }
+
+  /// One polygon edge a in a frame rotated by θ applied to w: value aᵀR(θ)ᵀw, the row ρ = aᵀR(θ)ᵀ
+  /// (∂/∂w) and dq = ∂value/∂θ (the rotation's derivative, different in every row).
+  struct Edge {
+    Scalar rx, ry, dq, value;
+  };
+  static Edge rotated_edge(Scalar ax, Scalar ay, Scalar cq, Scalar sq, Scalar wx, Scalar wy) {
+    const Scalar rx = ax * cq - ay * sq, ry = ax * sq + ay * cq;
+    const Scalar dq = (-ax * sq - ay * cq) * wx + (ax * cq - ay * sq) * wy;
+    return {rx, ry, dq, rx * wx + ry * wy};
+  }
+  /// Writes the columns of footstep i (w = … − F_i, rotated by θ_i) into a row: −ρ for x and y,
+  /// dq for θ_i. Returns their part of J U.
+  template <typename Row>
+  Scalar footstep_columns(const Edge& ed, Index i, const VectorX& U, Row& row) const {
+    row[ix_f() + i - 1] = -ed.rx;
+    row[iy_f() + i - 1] = -ed.ry;
+    row[iq_f() + i - 1] = ed.dq;
+    return -ed.rx * U[ix_f() + i - 1] - ed.ry * U[iy_f() + i - 1] + ed.dq * U[iq_f() + i - 1];
+  }
+
+  /// Constraint rows at U. With J != nullptr: the Gauss–Newton rows J ΔU around U folded into
+  /// lb ≤ J U' ≤ ub (bounds shifted by c(U) − J U). With c != nullptr: the values c(U) and
+  /// their bounds. Rows: ZMP (N·FootEdges), feasibility (nf·HullEdges), relative yaw (nf),
+  /// relative yaw rate (nf), obstacles (nf·capacity).
+  void linearise(const VectorX& U, RowMatrixX* J, VectorX* c, VectorX& lower,
+                 VectorX& upper) const {
+    using std::cos;
+    using std::sin;
+    if (J != nullptr) J->setZero();
+    Index r = 0;
+    auto theta = [&](Index i) { return i == 0 ? state_.support.q : U[iq_f() + i - 1]; };
+    auto fx = [&](Index i) { return i == 0 ? state_.support.x : U[ix_f() + i - 1]; };
+    auto fy = [&](Index i) { return i == 0 ? state_.support.y : U[iy_f() + i - 1]; };
+    // ZMP rows (eq. 2.65–2.69): a_eᵀ R(θ_s)ᵀ (z_j − F_s) ≤ b_e.
+    for (Index j = 0; j < N_; ++j) {
+      const Index s = (state_.phase + j) / S_;
+      const Foot foot = foot_of_step(s);
+      const auto& A = foot_A_[index(foot)];
+      const auto& bb = foot_b_[index(foot)];
+      const Scalar zx =
+          lipm_.P_zs.row(j).dot(state_.com_x) + lipm_.P_zu.row(j).dot(U.segment(ix_u(), N_));
+      const Scalar zy =
+          lipm_.P_zs.row(j).dot(state_.com_y) + lipm_.P_zu.row(j).dot(U.segment(iy_u(), N_));
+      const Scalar wx = zx - fx(s), wy = zy - fy(s);
+      const Scalar q = theta(s), cq = cos(q), sq = sin(q);
+      for (Index e = 0; e < A.rows(); ++e, ++r) {
+        const Edge ed = rotated_edge(A(e, 0), A(e, 1), cq, sq, wx, wy);
+        lower[r] = -kInf;
+        upper[r] = bb[e];
+        if (c != nullptr) (*c)[r] = ed.value;
+        if (J == nullptr) continue;
+        auto row = J->row(r);
+        row.segment(ix_u(), j + 1) = ed.rx * lipm_.P_zu.row(j).head(j + 1);
+        row.segment(iy_u(), j + 1) = ed.ry * lipm_.P_zu.row(j).head(j + 1);
+        Scalar lin = ed.rx * lipm_.P_zu.row(j).head(j + 1).dot(U.segment(ix_u(), j + 1)) +
+                     ed.ry * lipm_.P_zu.row(j).head(j + 1).dot(U.segment(iy_u(), j + 1));
+        if (s > 0) lin += footstep_columns(ed, s, U, row);
+        upper[r] -= ed.value - lin;  // J U' ≤ b − (c(U) − J U)
+      }
+    }
+    // Feasibility rows (eq. 2.70–2.72): a_eᵀ R(θ_{i−1})ᵀ (F_i − F_{i−1}) ≤ b_e, with the
+    // polygon of the landing foot (never the other one: DESIGN.md §4).
+    for (Index i = 1; i <= nf_; ++i) {
+      const Foot landing = foot_of_step(i);
+      const auto& A = hull_A_[index(landing)];
+      const auto& bb = hull_b_[index(landing)];
+      const Scalar wx = fx(i) - fx(i - 1), wy = fy(i) - fy(i - 1);
+      const Scalar q = theta(i - 1), cq = cos(q), sq = sin(q);
+      for (Index e = 0; e < A.rows(); ++e, ++r) {
+        const Edge ed = rotated_edge(A(e, 0), A(e, 1), cq, sq, wx, wy);
+        lower[r] = -kInf;
+        upper[r] = bb[e];
+        if (c != nullptr) (*c)[r] = ed.value;
+        if (J == nullptr) continue;
+        auto row = J->row(r);
+        row[ix_f() + i - 1] = ed.rx;
+        row[iy_f() + i - 1] = ed.ry;
+        Scalar lin = ed.rx * U[ix_f() + i - 1] + ed.ry * U[iy_f() + i - 1];
+        if (i > 1) lin += footstep_columns(ed, i - 1, U, row);
+        upper[r] -= ed.value - lin;
+      }
+    }
+    // Relative yaw (eq. 2.73): |θ_i − θ_{i−1}| ≤ θ_max; relative yaw rate (eq. 2.74) on the
+    // swing foot's quintic: 15/8 |θ_i − θ_origin| / t_ss ≤ θ̇_max. Linear in U.
+    const Scalar t_ss = s_.t_step - s_.t_ds;
+    const Scalar max_turn = Scalar(8) / Scalar(15) * s_.max_relative_yaw_rate * t_ss;
+    for (int kind = 0; kind < 2; ++kind) {
+      const Scalar limit = kind == 0 ? s_.max_relative_yaw : max_turn;
+      for (Index i = 1; i <= nf_; ++i, ++r) {
+        // Origin: the previous step (relative yaw), or where this foot lifts off (rate).
+        Index o = kind == 0 ? i - 1 : i - 2;
+        Scalar origin_value = Scalar(0);
+        bool origin_is_var = false;
+        if (o >= 1) {
+          origin_value = U[iq_f() + o - 1];
+          origin_is_var = true;
+        } else {
+          origin_value = o == 0 ? state_.support.q : state_.swing_origin.q;
+        }
+        const Scalar value = U[iq_f() + i - 1] - origin_value;
+        lower[r] = -limit;
+        upper[r] = limit;
+        if (c != nullptr) (*c)[r] = value;
+        if (J == nullptr) continue;
+        (*J)(r, iq_f() + i - 1) = Scalar(1);
+        if (origin_is_var) {
+          (*J)(r, iq_f() + o - 1) = Scalar(-1);
+        } else {
+          lower[r] += origin_value;
+          upper[r] += origin_value;
+        }
+      }
+    }
+    // Obstacles (eq. 2.79–2.82): ‖F_i − o‖² ≥ (R + m)², linearised (an inner approximation:
+    // every point of the linearised half-plane satisfies the circle constraint).
+    for (Index k = 0; k < cap_obstacles_; ++k) {
+      for (Index i = 1; i <= nf_; ++i, ++r) {
+        if (k >= Index(obstacles_.size())) {
+          lower[r] = -kInf;
+          upper[r] = kInf;
+          if (c != nullptr) (*c)[r] = Scalar(0);
+          continue;
+        }
+        const Obstacle& ob = obstacles_[std::size_t(k)];
+        Scalar dx = fx(i) - ob.x, dy = fy(i) - ob.y;
+        const Scalar value = dx * dx + dy * dy;
+        const Scalar rr = ob.radius + ob.margin;
+        lower[r] = rr * rr;
+        upper[r] = kInf;
+        if (c != nullptr) (*c)[r] = value;
+        if (J == nullptr) continue;
+        (*J)(r, ix_f() + i - 1) = Scalar(2) * dx;
+        (*J)(r, iy_f() + i - 1) = Scalar(2) * dy;
+        lower[r] -= value - (Scalar(2) * dx * fx(i) + Scalar(2) * dy * fy(i));
+      }
+    }
+    (void)r;
+  }
+
+  Settings s_;
+  Index S_, N_, nf_, cap_obstacles_, foot_edges_, hull_edges_;
+  LipmPreview<Scalar, N> lipm_;
+  LipmStep<Scalar> step_;
+  DenseQp<Scalar> qp_;
+  std::array<Eigen::Matrix<Scalar, FootEdges, 2>, 2> foot_A_;
+  std::array<FootRhs, 2> foot_b_;
+  std::array<HullPolygon, 2> hull_A_;
+  std::array<HullRhs, 2> hull_b_;
+  Eigen::Matrix<Scalar, N, N> HUU_;
+  MatrixX D_, Hqq_;
+  VectorX yaw_target_;
+  MatrixX H_;
+  VectorX g_;
+  RowMatrixX A_;
+  VectorX lb_, ub_, l_, u_;
+  VectorX Zx_, Zy_, ref_x_, ref_y_, U_prev_;
+  std::vector<int> step_of_;
+  std::vector<Obstacle> obstacles_;
+  State state_;
+  Plan plan_;
+  Result result_;
+  Vector3 command_ = Vector3::Zero();
+};
+
+}  // namespace walkgen
