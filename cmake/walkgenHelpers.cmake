@@ -2,7 +2,8 @@
 #
 #   walkgen_add_test(NAME <name> SOURCES <files...> [LIBS <libs...>] [LABELS <labels...>])
 #   walkgen_add_benchmark(NAME <name> SOURCES <files...> [LIBS <libs...>])
-#   walkgen_add_example(NAME <name> SOURCES <files...> [LIBS <libs...>] [ARGS <args...>])
+#   walkgen_add_example(NAME <name> SOURCES <files...> [LIBS <libs...>] [ARGS <args...>]
+#                       [CASES <cases...>])
 #   walkgen_add_compile_fail_test(NAME <name> SOURCE <file> REGEX <regex>)
 #
 # Relative SOURCES are relative to the calling CMakeLists.txt. Every target gets our warning flags
@@ -102,9 +103,10 @@ function(walkgen_add_benchmark)
 endfunction()
 
 # An example program plus a ctest "example_<name>" (label "example") that runs it with ARGS in
-# ${CMAKE_BINARY_DIR}/example_output, where its CSV/PNG files land.
+# ${CMAKE_BINARY_DIR}/example_output, where its CSV/PNG files land. With CASES, one ctest
+# "example_<name>_<case>" per case instead, running `<name> <case> ARGS...`.
 function(walkgen_add_example)
-  cmake_parse_arguments(_arg "" "NAME" "SOURCES;LIBS;ARGS" ${ARGN})
+  cmake_parse_arguments(_arg "" "NAME" "SOURCES;LIBS;ARGS;CASES" ${ARGN})
   _walkgen_check_args(walkgen_add_example)
   if(NOT _arg_SOURCES)
     message(FATAL_ERROR "walkgen_add_example(${_arg_NAME}): SOURCES is required")
@@ -118,8 +120,15 @@ function(walkgen_add_example)
 
   set(_out "${CMAKE_BINARY_DIR}/example_output")
   file(MAKE_DIRECTORY "${_out}")
-  add_test(NAME example_${_arg_NAME} COMMAND ${_arg_NAME} ${_arg_ARGS} WORKING_DIRECTORY "${_out}")
-  set_tests_properties(example_${_arg_NAME} PROPERTIES LABELS example TIMEOUT 300)
+  if(NOT _arg_CASES)
+    add_test(NAME example_${_arg_NAME} COMMAND ${_arg_NAME} ${_arg_ARGS} WORKING_DIRECTORY "${_out}")
+    set_tests_properties(example_${_arg_NAME} PROPERTIES LABELS example TIMEOUT 300)
+  endif()
+  foreach(_case IN LISTS _arg_CASES)
+    add_test(NAME example_${_arg_NAME}_${_case} COMMAND ${_arg_NAME} ${_case} ${_arg_ARGS}
+             WORKING_DIRECTORY "${_out}")
+    set_tests_properties(example_${_arg_NAME}_${_case} PROPERTIES LABELS example TIMEOUT 300)
+  endforeach()
 endfunction()
 
 # A ctest that passes only if compiling SOURCE fails AND the compiler output matches REGEX

@@ -1,0 +1,182 @@
+// Walks the scenarios of thesis §9.1 (figures 9.1–9.3) with the HRP-2 preset
+// (walkgen::hrp2_settings): straight, sideways, curved, turn on the spot, a changing command
+// sequence and obstacle avoidance, each for 200 ticks of WalkingMpc<double, 16>
+// (tests/support/walking_scenarios.hpp), and plots each walk from above.
+//
+//   walking_scenarios [scenario|all] [--out DIR] [--no-plot]
+//
+// For each scenario NAME it writes DIR/NAME.csv (the interpolated trajectory, thesis column
+// order), DIR/NAME_footsteps.csv (time,foot,x,y,q of every landing, initial feet first),
+// DIR/NAME_meta.csv (key,value: foot and margin sizes, command period, obstacles) and, unless
+// --no-plot, DIR/NAME.png through python/plot_walking.py (needs /usr/bin/python3 with
+// matplotlib). Exits non-zero on bad arguments, a failed QP or a failed plot.
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "support/walking_scenarios.hpp"
+#include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/mpc/settings.hpp"
+
+namespace {
+
+struct Options {
+  std::string scenario = "all";
+  std::string out = ".";
+  bool plot = true;
+};
+
+void usage(const char* argv0) {
+  std::cerr << "usage: " << argv0 << " [scenario|all] [--out DIR] [--no-plot]\n  scenarios:";
+  for (const auto& s : walkgen_test::walking_scenarios()) std::cerr << ' ' << s.name;
+  std::cerr << "\n";
+}
+
+bool known(const std::string& name) {
+  for (const auto& s : walkgen_test::walking_scenarios()) {
+    if (s.name == name) return true;
+  }
+  return name == "all";
+}
+
+bool parse_args(int argc, char** argv, Options* opt) {
+  bool have_scenario = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--no-plot") {
+      opt->plot = false;
+    } else if (a == "--out") {
+      if (i + 1 >= argc) {
+        std::cerr << "error: --out expects a directory\n";
+        return false;
+      }
+      opt->out = argv[++i];
+    } else if (a == "--help" || a == "-h") {
+      usage(argv[0]);
+      std::exit(0);
+    } else if (!a.empty() && a[0] != '-' && !have_scenario) {
+      if (!known(a)) {
+        std::cerr << "error: unknown scenario '" << a << "'\n";
+        return false;
+      }
+      opt->scenario = a;
+      have_scenario = true;
+    } else {
+      std::cerr << "error: unexpected argument '" << a << "'\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Parses the arguments; prints the error and the usage when they are bad.
+bool parse(int argc, char** argv, Options* opt) {
+  if (parse_args(argc, argv, opt)) return true;
+  usage(argv[0]);
+  return false;
+}
+
+bool open(const std::string& path, std::ofstream* os) {
+  os->open(path);
+  if (!*os) std::cerr << "error: cannot write " << path << "\n";
+  return bool(*os);
+}
+
+/// Runs, writes and plots one scenario; false on a failed QP, file or plot.
+bool walk(const walkgen_test::Scenario& sc, const Options& opt) {
+  const auto settings = walkgen::hrp2_settings<double>();
+  const walkgen_test::ScenarioRun run = walkgen_test::run_scenario<16>(sc, settings);
+
+  int failures = 0;
+  double active_changes = 0.0;
+  for (const auto& r : run.results) {
+    if (r.status != walkgen::MpcStatus::solved) ++failures;
+    active_changes += r.qp_iterations;
+  }
+  // Distance walked: CoM start to end (net), and the length of its swaying path.
+  double path = 0.0;
+  for (std::size_t i = 1; i < run.samples.size(); ++i) {
+    path += std::hypot(run.samples[i].com_x[0] - run.samples[i - 1].com_x[0],
+                       run.samples[i].com_y[0] - run.samples[i - 1].com_y[0]);
+  }
+  const auto &first = run.samples.front(), &last = run.samples.back();
+  const double net = std::hypot(last.com_x[0] - first.com_x[0], last.com_y[0] - first.com_y[0]);
+  std::printf(
+      "%-9s %3d ticks, %d QP failures, CoM walked %.3f m (path %.3f m), final yaw %.2f "
+      "rad, %zu steps, %.2f mean QP active-set changes per tick\n",
+      sc.name.c_str(), int(run.results.size()), failures, net, path, last.com_q[0],
+      run.landings.size() - 2, active_changes / double(run.results.size()));
+
+  const std::string base = opt.out + "/" + sc.name;
+  std::ofstream traj, steps, meta;
+  if (!open(base + ".csv", &traj) || !open(base + "_footsteps.csv", &steps) ||
+      !open(base + "_meta.csv", &meta)) {
+    return false;
+  }
+  walkgen::write_trajectory_csv(traj, run.samples);
+  steps.precision(10);
+  steps << "time,foot,x,y,q\n";
+  for (const auto& l : run.landings) {
+    steps << l.time << ',' << walkgen::to_string(l.foot) << ',' << l.pose.x << ',' << l.pose.y
+          << ',' << l.pose.q << '\n';
+  }
+  meta.precision(10);
+  meta << "key,value\nfoot_length," << settings.foot_length << "\nfoot_width,"
+       << settings.foot_width << "\nsecurity_margin_x," << settings.security_margin[0]
+       << "\nsecurity_margin_y," << settings.security_margin[1] << "\ncommand_period,"
+       << settings.command_period << '\n';
+  for (const auto& o : sc.obstacles) {
+    meta << "obstacle_x," << o.x << "\nobstacle_y," << o.y << "\nobstacle_radius," << o.radius
+         << "\nobstacle_margin," << o.margin << '\n';
+  }
+  traj.close();
+  steps.close();
+  meta.close();
+  if (!traj || !steps || !meta) {
+    std::cerr << "error: writing " << base << "*.csv failed\n";
+    return false;
+  }
+
+  if (failures > 0) {
+    for (std::size_t k = 0; k < run.results.size(); ++k) {
+      const auto& r = run.results[k];
+      if (r.status == walkgen::MpcStatus::solved) continue;
+      std::cerr << "error: " << sc.name << " tick " << k << ": QP "
+                << walkgen::to_string(r.qp_status) << ": " << r.message << "\n";
+      break;
+    }
+  }
+  if (opt.plot) {
+    const std::string script = std::string(WALKGEN_SOURCE_DIR) + "/python/plot_walking.py";
+    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + base + "'";
+    if (std::system(cmd.c_str()) != 0) {
+      std::cerr << "error: plotting " << base << ".png failed (needs /usr/bin/python3 with "
+                << "matplotlib: apt-get install python3-matplotlib, or pass --no-plot); the CSV "
+                << "files are complete\n";
+      return false;
+    }
+    std::printf("          wrote %s.png\n", base.c_str());
+  }
+  return failures == 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  if (!parse(argc, argv, &opt)) return 2;
+  std::error_code ec;
+  std::filesystem::create_directories(opt.out, ec);  // a failure shows when a file is opened
+  bool ok = true;
+  for (const auto& sc : walkgen_test::walking_scenarios()) {
+    if (opt.scenario == "all" || opt.scenario == sc.name) ok = walk(sc, opt) && ok;
+  }
+  std::printf("output files are in %s\n", opt.out.c_str());
+  return ok ? 0 : 1;
+}
