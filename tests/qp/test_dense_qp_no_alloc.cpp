@@ -10,40 +10,16 @@
 #include <new>
 #include <vector>
 
+#include "support/count_allocations.hpp"
 #include "support/qp_problems.hpp"
 #include "support/walking_qp.hpp"
 #include "walkgen/qp/dense_qp.hpp"
-
-#ifndef EIGEN_RUNTIME_NO_MALLOC
-#error "this test needs EIGEN_RUNTIME_NO_MALLOC"
-#endif
-
-namespace {
-std::atomic<long> g_news{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_news;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
 using walkgen::DenseQp;
 using walkgen::QpStatus;
-
-// Runs f with Eigen allocations forbidden and returns how many operator new calls it made.
-template <typename F>
-long count_allocations(F&& f) {
-  const long before = g_news.load();
-  Eigen::internal::set_is_malloc_allowed(false);
-  f();
-  Eigen::internal::set_is_malloc_allowed(true);
-  return g_news.load() - before;
-}
+using walkgen_test::count_allocations;
 
 TEST(DenseQpNoAlloc, GuardsAreArmed) {
   // Positive controls: both detectors see an allocation.

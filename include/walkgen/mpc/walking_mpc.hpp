@@ -353,6 +353,8 @@ class WalkingMpc {
   const RowMatrixX& qp_A() const { return A_; }
   const VectorX& qp_lb() const { return lb_; }
   const VectorX& qp_ub() const { return ub_; }
+  const VectorX& qp_l() const { return l_; }
+  const VectorX& qp_u() const { return u_; }
 
   /// The nonlinear constraint functions c(U) of eq. 2.65–2.82 for the current state, written as
   /// lb_c ≤ c(U) ≤ ub_c with the same rows as the QP: the QP's rows are their Gauss–Newton

@@ -1,0 +1,58 @@
+// Proves that a generator tick (set_command, solve, interpolate, advance, set_obstacles within the
+// capacity, set_state) never touches the heap after construction (DESIGN.md convention 6), for
+// fixed and dynamic sizes, with obstacles, and through a failed QP.
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "support/count_allocations.hpp"
+#include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/mpc/walking_mpc.hpp"
+
+namespace {
+
+using walkgen_test::count_allocations;
+
+template <typename Mpc>
+void expect_ticks_do_not_allocate(const walkgen::WalkingSettings<double>& s) {
+  Mpc mpc(s, /*obstacle_capacity=*/2);
+  walkgen::WalkingInterpolator<double> interp(s);
+  std::vector<walkgen::TrajectorySample<double>> buffer(std::size_t(interp.samples_per_tick()));
+  const std::vector<walkgen::CircleObstacle<double>> none, one{{1.6, 1.0, 1.0, 0.4}},
+      blocking{{0.0, 0.0, 2.0, 0.5}};
+  int solved = 0, failed = 0;
+  const long news = count_allocations([&] {
+    for (int k = 0; k < 60; ++k) {
+      mpc.set_command({0.1, 0.0, k > 30 ? 0.1 : 0.0});
+      if (k == 10) mpc.set_obstacles(one);
+      if (k == 40) mpc.set_obstacles(blocking);  // infeasible: the safe plan is kept
+      if (k == 41) mpc.set_obstacles(none);
+      if (k == 20) {
+        auto st = mpc.state();
+        st.com_x[0] += 0.005;  // feedback
+        mpc.set_state(st);
+      }
+      const auto& r = mpc.solve();
+      (r.status == walkgen::MpcStatus::solved ? solved : failed)++;
+      interp.interpolate(mpc, buffer.data());
+      mpc.advance();
+    }
+  });
+  EXPECT_EQ(news, 0);
+  EXPECT_GE(solved, 58);
+  EXPECT_GE(failed, 1);  // the blocking obstacle was really exercised
+}
+
+TEST(WalkingMpcNoAlloc, FixedSizes) {
+  expect_ticks_do_not_allocate<walkgen::WalkingMpc<double, 16>>(walkgen::hrp2_settings<double>());
+}
+
+TEST(WalkingMpcNoAlloc, DynamicSizes) {
+  auto s = walkgen::hrp2_settings<double>();
+  s.n = 24;
+  expect_ticks_do_not_allocate<
+      walkgen::WalkingMpc<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>>(s);
+}
+
+}  // namespace
