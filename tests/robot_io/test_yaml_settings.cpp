@@ -57,15 +57,18 @@ void expect_same_settings(const Settings& a, const Settings& b) {
       {"gamma", &Settings::gamma},
       {"cpu_time", &Settings::cpu_time},
       {"max_relative_yaw", &Settings::max_relative_yaw},
-      {"max_relative_yaw_rate", &Settings::max_relative_yaw_rate}};
+      {"max_relative_yaw_rate", &Settings::max_relative_yaw_rate},
+      {"footstep_regularization", &Settings::footstep_regularization}};
   for (const auto& f : numbers) EXPECT_DOUBLE_EQ(a.*f.member, b.*f.member) << f.name;
   const Field<Settings, int> integers[] = {{"n_still", &Settings::n_still},
                                            {"n", &Settings::n},
                                            {"nwsr", &Settings::nwsr},
                                            {"sqp_iterations", &Settings::sqp_iterations}};
   for (const auto& f : integers) EXPECT_EQ(a.*f.member, b.*f.member) << f.name;
-  const Field<Settings, Vector3> vectors[] = {
-      {"com_x", &Settings::com_x}, {"com_y", &Settings::com_y}, {"com_q", &Settings::com_q}};
+  const Field<Settings, Vector3> vectors[] = {{"com_x", &Settings::com_x},
+                                              {"com_y", &Settings::com_y},
+                                              {"com_q", &Settings::com_q},
+                                              {"max_command", &Settings::max_command}};
   for (const auto& f : vectors) expect_same_matrix(a.*f.member, b.*f.member, f.name);
   expect_same_matrix(a.security_margin, b.security_margin, "security_margin");
   expect_same_matrix(a.left_foot_convex_hull, b.left_foot_convex_hull, "left_foot_convex_hull");
@@ -129,9 +132,12 @@ TEST(YamlSettings, MissingKeysKeepTheDefaults) {
   expected.max_relative_yaw = 0.2;
   expected.max_relative_yaw_rate = 1.5;
   expected.sqp_iterations = 3;
+  expected.max_command << 0.3, 0.1, 0.2;
+  expected.footstep_regularization = 1e-8;
   expect_same_settings(walkgen::walking_settings_from_yaml(
                            "step_height: 0.07\nsupport_foot: right\nmax_relative_yaw: 0.2\n"
-                           "max_relative_yaw_rate: 1.5\nsqp_iterations: 3\n"),
+                           "max_relative_yaw_rate: 1.5\nsqp_iterations: 3\n"
+                           "max_command: [0.3, 0.1, 0.2]\nfootstep_regularization: 1e-8\n"),
                        expected);
 }
 

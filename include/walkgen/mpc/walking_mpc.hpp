@@ -609,6 +609,25 @@ class WalkingMpc {
     return -ed.rx * U[ix_f() + i - 1] - ed.ry * U[iy_f() + i - 1] + ed.dq * U[iq_f() + i - 1];
   }
 
+  /// The rows a_eᵀ R(θ)ᵀ w ≤ b_e of one polygon, from row r on (advanced past them). `columns`
+  /// writes the Jacobian columns of w (and θ) into a row and returns their part of J U.
+  template <typename PolyA, typename PolyB, typename Columns>
+  void polygon_rows(const PolyA& A, const PolyB& bb, Scalar q, Scalar wx, Scalar wy, RowMatrixX* J,
+                    VectorX* c, VectorX& lower, VectorX& upper, Index& r, Columns&& columns) const {
+    using std::cos;
+    using std::sin;
+    const Scalar cq = cos(q), sq = sin(q);
+    for (Index e = 0; e < A.rows(); ++e, ++r) {
+      const Edge ed = rotated_edge(A(e, 0), A(e, 1), cq, sq, wx, wy);
+      lower[r] = -kInf;
+      upper[r] = bb[e];
+      if (c != nullptr) (*c)[r] = ed.value;
+      if (J == nullptr) continue;
+      auto row = J->row(r);
+      upper[r] -= ed.value - columns(ed, row);  // J U' ≤ b − (c(U) − J U)
+    }
+  }
+
   /// Constraint rows at U. With J != nullptr: the Gauss–Newton rows J ΔU around U folded into
   /// lb ≤ J U' ≤ ub (bounds shifted by c(U) − J U). With c != nullptr: the values c(U) and
   /// their bounds. Rows: ZMP (N·FootEdges), feasibility (nf·HullEdges), relative yaw (nf),
@@ -633,21 +652,14 @@ class WalkingMpc {
       const Scalar zy =
           lipm_.P_zs.row(j).dot(state_.com_y) + lipm_.P_zu.row(j).dot(U.segment(iy_u(), N_));
       const Scalar wx = zx - fx(s), wy = zy - fy(s);
-      const Scalar q = theta(s), cq = cos(q), sq = sin(q);
-      for (Index e = 0; e < A.rows(); ++e, ++r) {
-        const Edge ed = rotated_edge(A(e, 0), A(e, 1), cq, sq, wx, wy);
-        lower[r] = -kInf;
-        upper[r] = bb[e];
-        if (c != nullptr) (*c)[r] = ed.value;
-        if (J == nullptr) continue;
-        auto row = J->row(r);
+      polygon_rows(A, bb, theta(s), wx, wy, J, c, lower, upper, r, [&](const Edge& ed, auto& row) {
         row.segment(ix_u(), j + 1) = ed.rx * lipm_.P_zu.row(j).head(j + 1);
         row.segment(iy_u(), j + 1) = ed.ry * lipm_.P_zu.row(j).head(j + 1);
         Scalar lin = ed.rx * lipm_.P_zu.row(j).head(j + 1).dot(U.segment(ix_u(), j + 1)) +
                      ed.ry * lipm_.P_zu.row(j).head(j + 1).dot(U.segment(iy_u(), j + 1));
         if (s > 0) lin += footstep_columns(ed, s, U, row);
-        upper[r] -= ed.value - lin;  // J U' ≤ b − (c(U) − J U)
-      }
+        return lin;
+      });
     }
     // Feasibility rows (eq. 2.70–2.72): a_eᵀ R(θ_{i−1})ᵀ (F_i − F_{i−1}) ≤ b_e, with the
     // polygon of the landing foot (never the other one: DESIGN.md §4).
@@ -656,20 +668,14 @@ class WalkingMpc {
       const auto& A = hull_A_[index(landing)];
       const auto& bb = hull_b_[index(landing)];
       const Scalar wx = fx(i) - fx(i - 1), wy = fy(i) - fy(i - 1);
-      const Scalar q = theta(i - 1), cq = cos(q), sq = sin(q);
-      for (Index e = 0; e < A.rows(); ++e, ++r) {
-        const Edge ed = rotated_edge(A(e, 0), A(e, 1), cq, sq, wx, wy);
-        lower[r] = -kInf;
-        upper[r] = bb[e];
-        if (c != nullptr) (*c)[r] = ed.value;
-        if (J == nullptr) continue;
-        auto row = J->row(r);
-        row[ix_f() + i - 1] = ed.rx;
-        row[iy_f() + i - 1] = ed.ry;
-        Scalar lin = ed.rx * U[ix_f() + i - 1] + ed.ry * U[iy_f() + i - 1];
-        if (i > 1) lin += footstep_columns(ed, i - 1, U, row);
-        upper[r] -= ed.value - lin;
-      }
+      polygon_rows(A, bb, theta(i - 1), wx, wy, J, c, lower, upper, r,
+                   [&](const Edge& ed, auto& row) {
+                     row[ix_f() + i - 1] = ed.rx;
+                     row[iy_f() + i - 1] = ed.ry;
+                     Scalar lin = ed.rx * U[ix_f() + i - 1] + ed.ry * U[iy_f() + i - 1];
+                     if (i > 1) lin += footstep_columns(ed, i - 1, U, row);
+                     return lin;
+                   });
     }
     // Relative yaw (eq. 2.73): |θ_i − θ_{i−1}| ≤ θ_max; relative yaw rate (eq. 2.74) on the
     // swing foot's quintic: 15/8 |θ_i − θ_origin| / t_ss ≤ θ̇_max. Linear in U.
