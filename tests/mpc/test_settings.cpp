@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <functional>
 #include <limits>
 #include <string>
@@ -82,6 +84,10 @@ TEST(WalkingSettings, BadValuesAreRejectedNamingTheKey) {
          s.obstacles.push_back({1.6, 1.0, -1.0, 0.4});
        }},
       {"WalkingSettings.sqp_iterations", [](Settings& s) { s.sqp_iterations = 0; }},
+      {"WalkingSettings.sqp_corrections", [](Settings& s) { s.sqp_corrections = -1; }},
+      {"WalkingSettings.sqp_tolerance", [](Settings& s) { s.sqp_tolerance = 0; }},
+      {"WalkingSettings.sqp_tolerance", [](Settings& s) { s.sqp_tolerance = std::nan(""); }},
+      {"WalkingSettings.step_velocity_weight", [](Settings& s) { s.step_velocity_weight = -1; }},
   };
   for (const auto& c : cases) {
     Settings s = walkgen::hrp2_settings();

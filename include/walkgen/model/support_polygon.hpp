@@ -57,7 +57,8 @@ void check_convex_polygon(const char* where, const Eigen::MatrixBase<Derived>& v
 }
 
 /// Half-plane form {p : A p ≤ b} of a convex polygon with E vertices (rows of `vertices`):
-/// row e of A is the outward normal of the edge from vertex e to vertex e+1 (not normalised).
+/// row e of A is the outward unit normal of the edge from vertex e to vertex e+1, so that
+/// a_eᵀp − b_e is the signed distance of p beyond that edge.
 /// @throws walkgen::invalid_argument if the vertices are not a convex polygon.
 template <typename Derived, typename DA, typename Db>
 void polygon_halfplanes(const Eigen::MatrixBase<Derived>& vertices, Eigen::MatrixBase<DA>& A,
@@ -80,9 +81,10 @@ void polygon_halfplanes(const Eigen::MatrixBase<Derived>& vertices, Eigen::Matri
       ny = -ny;
       be = -be;
     }
-    A(e, 0) = nx;
-    A(e, 1) = ny;
-    b(e) = be;
+    const Scalar length = std::sqrt(nx * nx + ny * ny);  // unit normals: a value is a distance
+    A(e, 0) = nx / length;
+    A(e, 1) = ny / length;
+    b(e) = be / length;
   }
 }
 

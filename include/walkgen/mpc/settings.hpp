@@ -96,6 +96,11 @@ struct WalkingSettings {
   /// foot, gamma penalises jerk. Raising beta trades command tracking for ZMP margin; gamma > 0
   /// keeps the QP strictly convex and smooths the CoM.
   Scalar alpha = Scalar(1), beta = Scalar(1e-6), gamma = Scalar(1e-5);
+  /// Weight of the step velocity: each planned footstep's displacement from the previous one,
+  /// divided by t_step, tracks the command (plus the lateral foot_distance), per (m/s)² and
+  /// horizon sample like alpha. It carries the mean walking velocity that the instantaneous
+  /// CoM velocity cost (alpha) cannot, as that cost also charges the sway (docs/tuning.md).
+  Scalar step_velocity_weight = Scalar(10);
   /// [s] the thesis's qpOASES wall-clock limit (`cpu_time`). Accepted for compatibility and
   /// ignored: a wall-clock limit made the thesis's runs fail under load (DESIGN.md §4); walkgen
   /// limits work by iterations (`nwsr`) instead.
@@ -113,8 +118,12 @@ struct WalkingSettings {
   /// HRP-2's timing needs 1.5 rad/s (Δθ = 0.32 rad in 0.4 s).
   Scalar max_relative_yaw_rate = Scalar(2.0);
   /// Largest accepted velocity command (|v_x| [m/s], |v_y| [m/s], |ω_z| [rad/s]); larger or
-  /// non-finite commands are rejected with a status and the previous command is kept.
-  Vector3 max_command = Vector3(Scalar(0.4), Scalar(0.2), Scalar(0.4));
+  /// non-finite commands are rejected with a status and the previous command is kept. The
+  /// presets accept what their feasibility polygons and yaw limit can reach: HRP-2 steps at most
+  /// 0.28 m forward per 0.8 s step (0.35 m/s); sideways, the leading foot at most 0.4 m from the
+  /// other, 0.2 m beyond foot_distance per 1.6 s gait cycle (0.125 m/s); it turns at most
+  /// max_relative_yaw per step (0.31 rad/s).
+  Vector3 max_command = Vector3(Scalar(0.35), Scalar(0.12), Scalar(0.3));
   /// Proximal weight on the footstep variables (x, y, yaw) toward the previous plan. Keeps the
   /// QP strictly convex when the last planned step has no ZMP sample in the horizon (at the
   /// first sample of every step); small enough not to move a step that the cost determines.
@@ -125,6 +134,13 @@ struct WalkingSettings {
   Polygon zmp_polygon;
   /// Gauss–Newton iterations per tick: 1 is the real-time iteration (eq. 2.83–2.89).
   int sqp_iterations = 1;
+  /// Further Gauss–Newton iterations, at most, when the plan violates the nonlinear
+  /// constraints (rotated polygons) by more than sqp_tolerance after sqp_iterations: the
+  /// linearisation error of a large change of foot yaw. 0 keeps exactly sqp_iterations.
+  int sqp_corrections = 2;
+  /// [m] largest tolerated violation of the nonlinear constraints (a distance beyond a
+  /// polygon edge or inside an obstacle's margin) before a correction iteration.
+  Scalar sqp_tolerance = Scalar(1e-3);
 
   /// Samples of the preview horizon per step, t_step / t (an integer after validate()).
   int samples_per_step() const { return static_cast<int>(std::lround(t_step / t)); }
@@ -172,6 +188,12 @@ WalkingSettings<Scalar> heicub_settings() {
   s.alpha = Scalar(1);
   s.beta = Scalar(1e2);
   s.gamma = Scalar(1e-2);
+  // beta = 1e2 centres the ZMP 10⁸ times harder than HRP-2's: the step velocity must weigh
+  // comparably for the gait to follow the command (forward 0.02 m/s reaches 0.012 at 10).
+  s.step_velocity_weight = Scalar(100);
+  // Reach (see max_command): 0.11 m per 3.2 s step forward, 0.03 m per 6.4 s cycle sideways,
+  // 0.25 rad per step.
+  s.max_command << Scalar(0.034), Scalar(0.0045), Scalar(0.075);
   return s;
 }
 
@@ -230,12 +252,17 @@ void validate(const WalkingSettings<Scalar>& s) {
   check_positive("WalkingSettings.gravity", s.gravity);
   check_non_negative("WalkingSettings.alpha", s.alpha);
   check_non_negative("WalkingSettings.beta", s.beta);
+  check_non_negative("WalkingSettings.step_velocity_weight", s.step_velocity_weight);
   check_positive("WalkingSettings.gamma", s.gamma);  // strict convexity of the QP
   check_argument(s.nwsr >= 1, "WalkingSettings.nwsr", "at least 1 active-set change", s.nwsr);
   check_positive("WalkingSettings.max_relative_yaw", s.max_relative_yaw);
   check_positive("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate);
   check_argument(s.sqp_iterations >= 1, "WalkingSettings.sqp_iterations", "at least 1",
                  s.sqp_iterations);
+  check_argument(s.sqp_corrections >= 0, "WalkingSettings.sqp_corrections", "a count >= 0",
+                 s.sqp_corrections);
+  check_argument(std::isfinite(s.sqp_tolerance) && s.sqp_tolerance > Scalar(0),
+                 "WalkingSettings.sqp_tolerance", "a finite tolerance > 0 [m]", s.sqp_tolerance);
   check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all(),
                  "WalkingSettings.max_command", "finite limits >= 0", "NaN, inf or negative");
   check_non_negative("WalkingSettings.footstep_regularization", s.footstep_regularization);

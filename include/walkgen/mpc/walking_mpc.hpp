@@ -31,6 +31,7 @@
 /// and set_obstacles() never touch the heap (tests/mpc/test_walking_mpc_no_alloc.cpp).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -118,6 +119,9 @@ struct MpcResult {
   int sqp_iterations = 0;                   ///< Gauss–Newton iterations done
   int qp_iterations = 0;                    ///< active-set changes, summed over the iterations
   Scalar primal_residual = Scalar(0);       ///< of the last QP (linearised constraints)
+  /// Largest violation of the nonlinear constraints (eq. 2.65–2.82) by the plan [m or rad]:
+  /// the linearisation error that sqp_corrections iterations bring below sqp_tolerance.
+  Scalar constraint_violation = Scalar(0);
   CommandStatus last_command = CommandStatus::accepted;  ///< the last set_command() outcome
   Eigen::Matrix<Scalar, 3, 1> command = Eigen::Matrix<Scalar, 3, 1>::Zero();  ///< in use
 };
@@ -184,6 +188,9 @@ class WalkingMpc {
     Zx_.setZero(N_);
     Zy_.setZero(N_);
     U_prev_.setZero(n);
+    c_.setZero(m);
+    c_lower_.setZero(m);
+    c_upper_.setZero(m);
     step_of_.resize(N_);
     obstacles_.reserve(static_cast<std::size_t>(cap_obstacles_));
     obstacles_ = s_.obstacles;
@@ -198,9 +205,17 @@ class WalkingMpc {
       D_(i, i) = Scalar(1);
       if (i > 0) D_(i, i - 1) = Scalar(-1);
     }
-    Hqq_ = yaw_weight() * D_.transpose() * D_;
+    DtD_ = D_.transpose() * D_;
+    Hqq_ = yaw_weight() * DtD_;
     Hqq_.diagonal().array() += s_.footstep_regularization;
     yaw_target_.setZero(nf_);
+    {  // capture point at the end of the horizon: ξ_N = C_N + Ċ_N / ω
+      const Scalar w = std::sqrt(s_.gravity / s_.com_z);
+      xi_s_ = lipm_.P_ps.row(N_ - 1) + lipm_.P_vs.row(N_ - 1) / w;
+      xi_u_ = lipm_.P_pu.row(N_ - 1) + lipm_.P_vu.row(N_ - 1) / w;
+    }
+    step_target_x_.setZero(nf_);
+    step_target_y_.setZero(nf_);
     qp_.settings().max_iterations = s_.nwsr;
     reset(initial_state(s_));
   }
@@ -211,7 +226,7 @@ class WalkingMpc {
   Index samples_per_step() const { return S_; }
   Index num_vars() const { return 2 * (N_ + nf_) + nf_; }
   Index num_rows() const {
-    return N_ * foot_edges() + nf_ * hull_edges() + 2 * nf_ + nf_ * cap_obstacles_;
+    return N_ * foot_edges() + nf_ * hull_edges() + 2 * nf_ + nf_ * cap_obstacles_ + foot_edges();
   }
   Index obstacle_capacity() const { return cap_obstacles_; }
 
@@ -281,7 +296,9 @@ class WalkingMpc {
     result_.qp_iterations = 0;
     result_.message = "";
     prepare_tick();
-    for (int it = 0; it < s_.sqp_iterations; ++it) {
+    const int most = s_.sqp_iterations + s_.sqp_corrections;
+    for (int it = 0; it < most; ++it) {
+      if (it >= s_.sqp_iterations && result_.constraint_violation <= s_.sqp_tolerance) break;
       assemble();
       QpStatus st = qp_.init(H_, g_, A_, lb_, ub_, l_, u_);
       if (st != QpStatus::invalid_input) st = qp_.solve().status;
@@ -291,12 +308,17 @@ class WalkingMpc {
       result_.primal_residual = qr.primal_residual;
       ++result_.sqp_iterations;
       if (st != QpStatus::solved) {
-        result_.status = MpcStatus::qp_failed;
-        result_.message = qr.message;
+        // A failed correction keeps the solved plan of the iteration before; only a failure
+        // within the first sqp_iterations fails the tick.
+        if (it < s_.sqp_iterations) {
+          result_.status = MpcStatus::qp_failed;
+          result_.message = qr.message;
+        }
         qp_.reset_warm_start();
         break;
       }
       plan_.U = qr.x;
+      result_.constraint_violation = violation(plan_.U);
     }
     return result_;
   }
@@ -416,6 +438,9 @@ class WalkingMpc {
   /// Weight of the yaw-rate tracking per footstep: α per horizon sample, as eq. 2.44 sums the
   /// rate error over the S samples of a step, divided by t_step² to turn yaw steps into rates.
   Scalar yaw_weight() const { return s_.alpha * Scalar(S_) / (s_.t_step * s_.t_step); }
+  Scalar step_weight() const {
+    return s_.step_velocity_weight * Scalar(S_) / (s_.t_step * s_.t_step);
+  }
 
   /// Reference velocity at horizon sample j + 1: the command rotated along the reference
   /// heading, R(h + ω t (j + 1)) v (eq. 2.43; the thesis keeps the heading constant over the
@@ -492,28 +517,39 @@ class WalkingMpc {
     }
   }
 
-  /// After a landing: footstep i+1 becomes i. The new last footstep is guessed one stride
-  /// beyond the same foot's previous step, F_nf = F_{nf−2} + (F_{nf−1} − F_{nf−3}) with F_0 the
-  /// new support foot and F_{−1} the swing origin; with one planned step, beside the support.
+  /// After a landing: footstep i+1 becomes i. The new last footstep is guessed where the step
+  /// velocity target puts it (the Gauss–Newton rows are linearised there: a guess far from the
+  /// solution makes the rotated rows' linearisation error large).
   void shift_footsteps() {
     for (Index base : {ix_f(), iy_f(), iq_f()}) {
       for (Index i = 1; i < nf_; ++i) plan_.U[base + i - 1] = plan_.U[base + i];
     }
-    auto pose = [&](Index i) -> FootPose<Scalar> {
-      if (i == 0) return state_.support;
-      if (i < 0) return state_.swing_origin;
-      return plan_.footstep(int(i));
-    };
-    FootPose<Scalar> guess;
-    if (nf_ >= 2) {
-      const FootPose<Scalar> a = pose(nf_ - 2), b = pose(nf_ - 1), c = pose(nf_ - 3);
-      guess = {a.x + b.x - c.x, a.y + b.y - c.y, a.q + b.q - c.q};
-    } else {
-      guess = beside(state_.support, state_.support_foot, s_.foot_distance);
-    }
-    plan_.U[ix_f() + nf_ - 1] = guess.x;
-    plan_.U[iy_f() + nf_ - 1] = guess.y;
-    plan_.U[iq_f() + nf_ - 1] = guess.q;
+    const FootPose<Scalar> last = nf_ >= 2 ? plan_.footstep(int(nf_ - 1)) : state_.support;
+    Scalar dx, dy;
+    step_displacement(nf_, dx, dy);
+    plan_.U[ix_f() + nf_ - 1] = last.x + dx;
+    plan_.U[iy_f() + nf_ - 1] = last.y + dy;
+    plan_.U[iq_f() + nf_ - 1] = last.q + command_[2] * s_.t_step;
+  }
+
+  /// Step velocity target (see step_weight()) of planned step i relative to step i − 1:
+  /// F_i − F_{i−1} = R(h_i) (t_step v + lateral), h_i the reference heading between the two
+  /// feet of step i. The feet stand foot_distance apart measured in the frame of the foot a
+  /// step is planned from, as the feasibility polygons measure it: foot_distance / cos(Δ/2)
+  /// between centres when consecutive feet turn by Δ = ω t_step.
+  void step_displacement(Index i, Scalar& dx_world, Scalar& dy_world) const {
+    using std::cos;
+    using std::sin;
+    const Scalar turn = command_[2] * s_.t_step;
+    const Scalar h = state_.support.q + turn * (Scalar(i) - Scalar(0.5));
+    const Scalar side = foot_of_step(i) == Foot::left ? Scalar(1) : Scalar(-1);
+    // Sideways, the leading foot steps 2 t_step v_y out and the trailing one closes up.
+    const Scalar lateral =
+        side * command_[1] > Scalar(0) ? Scalar(2) * s_.t_step * command_[1] : Scalar(0);
+    const Scalar dx = s_.t_step * command_[0];
+    const Scalar dy = lateral + side * s_.foot_distance / cos(turn / Scalar(2));
+    dx_world = cos(h) * dx - sin(h) * dy;
+    dy_world = sin(h) * dx + cos(h) * dy;
   }
 
   /// Per-tick data that do not depend on the iterate: step membership, velocity references,
@@ -533,6 +569,11 @@ class WalkingMpc {
     // Yaw tracking target: consecutive footsteps ω·t_step apart (eq. 2.44, see thesis-map).
     yaw_target_.setConstant(command_[2] * s_.t_step);
     yaw_target_[0] += state_.support.q;
+    for (Index i = 1; i <= nf_; ++i) {
+      step_displacement(i, step_target_x_[i - 1], step_target_y_[i - 1]);
+    }
+    step_target_x_[0] += state_.support.x;
+    step_target_y_[0] += state_.support.y;
   }
 
   /// Cost (eq. 2.51–2.60, gradient corrected per DESIGN.md §5) and linearised constraints
@@ -556,6 +597,7 @@ class WalkingMpc {
         H_(f0 + s - 1, f0 + s - 1) += b;
       }
       for (Index i = 0; i < nf_; ++i) H_(f0 + i, f0 + i) += eps;
+      H_.block(f0, f0, nf_, nf_) += step_weight() * DtD_;
     }
     H_.block(iq_f(), iq_f(), nf_, nf_) = Hqq_;
     // Gradient.
@@ -572,6 +614,8 @@ class WalkingMpc {
       auto gu = g_.segment(u0, N_);
       gu.noalias() = b * lipm_.P_zu.transpose() * z;
       for (Index i = 0; i < nf_; ++i) g_[f0 + i] = -eps * U_prev_[f0 + i];
+      g_.segment(f0, nf_).noalias() -=
+          step_weight() * D_.transpose() * (axis == 0 ? step_target_x_ : step_target_y_);
       for (Index j = 0; j < N_; ++j) {
         const int s = step_of_[j];
         if (s > 0) g_[f0 + s - 1] -= b * z[j];
@@ -587,6 +631,16 @@ class WalkingMpc {
       gq -= eps * U_prev_.segment(iq_f(), nf_);
     }
     linearise(U_prev_, &A_, nullptr, lb_, ub_);
+  }
+
+  /// Largest violation max(lb − c(U), c(U) − ub, 0) of the nonlinear constraints at U.
+  Scalar violation(const VectorX& U) {
+    linearise(U, nullptr, &c_, c_lower_, c_upper_);
+    Scalar worst = Scalar(0);
+    for (Index r = 0; r < c_.size(); ++r) {
+      worst = std::max({worst, c_lower_[r] - c_[r], c_[r] - c_upper_[r]});
+    }
+    return worst;
   }
 
   /// One polygon edge a in a frame rotated by θ applied to w: value aᵀR(θ)ᵀw, the row ρ = aᵀR(θ)ᵀ
@@ -708,8 +762,11 @@ class WalkingMpc {
         }
       }
     }
-    // Obstacles (eq. 2.79–2.82): ‖F_i − o‖² ≥ (R + m)², linearised (an inner approximation:
-    // every point of the linearised half-plane satisfies the circle constraint).
+    // Obstacles (eq. 2.79–2.82): ‖F_i − o‖ ≥ R + m. Linearising the distance (not its square,
+    // as the thesis does) gives the tangent half-plane d̂ᵀ(F_i − o) ≥ R + m in the direction d̂
+    // of the iterate from the centre: an inner approximation of the outside of the circle that
+    // stays feasible when the iterate (e.g. a new step's guess) lies inside the circle, where
+    // the squared form asks for a half-plane beyond reach.
     for (Index k = 0; k < cap_obstacles_; ++k) {
       for (Index i = 1; i <= nf_; ++i, ++r) {
         if (k >= Index(obstacles_.size())) {
@@ -720,16 +777,38 @@ class WalkingMpc {
         }
         const Obstacle& ob = obstacles_[std::size_t(k)];
         Scalar dx = fx(i) - ob.x, dy = fy(i) - ob.y;
-        const Scalar value = dx * dx + dy * dy;
-        const Scalar rr = ob.radius + ob.margin;
-        lower[r] = rr * rr;
+        const Scalar value = std::sqrt(dx * dx + dy * dy);
+        lower[r] = ob.radius + ob.margin;
         upper[r] = kInf;
         if (c != nullptr) (*c)[r] = value;
         if (J == nullptr) continue;
-        (*J)(r, ix_f() + i - 1) = Scalar(2) * dx;
-        (*J)(r, iy_f() + i - 1) = Scalar(2) * dy;
-        lower[r] -= value - (Scalar(2) * dx * fx(i) + Scalar(2) * dy * fy(i));
+        if (value > Scalar(1e-9)) {
+          dx /= value;
+          dy /= value;
+        } else {  // at the centre: leave it sideways of the support foot's heading
+          dx = -sin(state_.support.q);
+          dy = cos(state_.support.q);
+        }
+        (*J)(r, ix_f() + i - 1) = dx;
+        (*J)(r, iy_f() + i - 1) = dy;
+        lower[r] -= value - (dx * fx(i) + dy * fy(i));
       }
+    }
+    // Terminal capture point (capturability): ξ_N in the ZMP polygon of the last planned
+    // footstep, a_eᵀ R(θ_nf)ᵀ (ξ_N − F_nf) ≤ b_e. Without it the plan may leave the pendulum
+    // diverging beyond the horizon while every QP solves.
+    {
+      const Foot foot = foot_of_step(nf_);
+      const Scalar xx = xi_s_.dot(state_.com_x) + xi_u_.dot(U.segment(ix_u(), N_));
+      const Scalar xy = xi_s_.dot(state_.com_y) + xi_u_.dot(U.segment(iy_u(), N_));
+      polygon_rows(foot_A_[index(foot)], foot_b_[index(foot)], theta(nf_), xx - fx(nf_),
+                   xy - fy(nf_), J, c, lower, upper, r, [&](const Edge& ed, auto& row) {
+                     row.segment(ix_u(), N_) = ed.rx * xi_u_;
+                     row.segment(iy_u(), N_) = ed.ry * xi_u_;
+                     return ed.rx * xi_u_.dot(U.segment(ix_u(), N_)) +
+                            ed.ry * xi_u_.dot(U.segment(iy_u(), N_)) +
+                            footstep_columns(ed, nf_, U, row);
+                   });
     }
     (void)r;
   }
@@ -744,13 +823,15 @@ class WalkingMpc {
   std::array<HullPolygon, 2> hull_A_;
   std::array<HullRhs, 2> hull_b_;
   Eigen::Matrix<Scalar, N, N> HUU_;
-  MatrixX D_, Hqq_;
-  VectorX yaw_target_;
+  MatrixX D_, DtD_, Hqq_;
+  VectorX yaw_target_, step_target_x_, step_target_y_;
+  Eigen::Matrix<Scalar, 1, 3> xi_s_;
+  Eigen::Matrix<Scalar, 1, N> xi_u_;
   MatrixX H_;
   VectorX g_;
   RowMatrixX A_;
   VectorX lb_, ub_, l_, u_;
-  VectorX Zx_, Zy_, ref_x_, ref_y_, U_prev_;
+  VectorX Zx_, Zy_, ref_x_, ref_y_, U_prev_, c_, c_lower_, c_upper_;
   std::vector<int> step_of_;
   std::vector<Obstacle> obstacles_;
   State state_;

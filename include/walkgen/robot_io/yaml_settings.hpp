@@ -11,8 +11,8 @@
 ///   n_still, t_ds, step_height, com_x / com_y / com_q [3], com_z, support_foot (left | right),
 ///   foot_x, foot_y, foot_q, gravity, obstacle (bool) with x_pos, y_pos, radius and an optional
 ///   margin, n, t, t_feedback, alpha, beta, gamma, cpu_time, nwsr;
-///   walkgen's own: max_relative_yaw, max_relative_yaw_rate, sqp_iterations, max_command [3],
-///   footstep_regularization, and
+///   walkgen's own: max_relative_yaw, max_relative_yaw_rate, sqp_iterations, sqp_corrections,
+///   sqp_tolerance, step_velocity_weight, max_command [3], footstep_regularization, and
 ///   obstacles: [{x, y, radius, margin}, ...].
 /// A missing key keeps its value from `defaults`. Obstacles: if the file has `obstacle` or
 /// `obstacles`, it describes the whole set (the `obstacles` list, plus the thesis's single
@@ -258,6 +258,9 @@ const std::vector<YamlField<Scalar>>& yaml_fields() {
       {"max_relative_yaw", [](V v, T t) { v.read(t.s.max_relative_yaw); }},
       {"max_relative_yaw_rate", [](V v, T t) { v.read(t.s.max_relative_yaw_rate); }},
       {"sqp_iterations", [](V v, T t) { v.read(t.s.sqp_iterations); }},
+      {"sqp_corrections", [](V v, T t) { v.read(t.s.sqp_corrections); }},
+      {"sqp_tolerance", [](V v, T t) { v.read(t.s.sqp_tolerance); }},
+      {"step_velocity_weight", [](V v, T t) { v.read(t.s.step_velocity_weight); }},
       {"max_command", [](V v, T t) { v.read(t.s.max_command); }},
       {"footstep_regularization", [](V v, T t) { v.read(t.s.footstep_regularization); }},
   };
