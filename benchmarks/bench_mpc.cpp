@@ -1,7 +1,8 @@
 // Google Benchmark timings of the NMPC walking generator (DESIGN.md convention 16).
 //
 //   build/release/benchmarks/bench_mpc --benchmark_repetitions=10
-//       --benchmark_report_aggregates_only=true   (one command line)
+//       --benchmark_report_aggregates_only=true   (one command line; portable x86-64 build)
+// and the same with build/bench/ (cmake --preset bench: built with -march=native).
 //
 // Families, each for N = 8, 16, 32, 64 preview samples (HRP-2 preset, t_step 0.8 s, t 0.1 s):
 //   BM_Tick{Straight,Obstacle}<N>   one full tick: set_command + solve() (cost and constraint
@@ -10,7 +11,9 @@
 //   BM_QpOfTick<N>                 the QP alone: init() + warm solve() on the problems the
 //                                  straight walk produced (so tick − QP = assembly + bookkeeping)
 //   BM_Interpolate                 the 20 command-period samples of one tick
-// N = 8 (a preview of one step) lets the pendulum diverge; those rows report the error.
+// N = 8 (a preview of one step) cannot avoid the obstacle: its QP fails (capture-point
+// constraint) and BM_TickObstacle<8> reports the error. BM_Tick*: a tick with correction
+// iterations (docs/tuning.md) counts both QPs.
 // Counters: qp_changes = active-set changes per QP, vars/rows = QP size.
 
 #include <benchmark/benchmark.h>

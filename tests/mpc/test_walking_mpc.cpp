@@ -213,35 +213,13 @@ INSTANTIATE_TEST_SUITE_P(Hrp2, Scenario,
                          ::testing::Values("straight", "sideways", "curved", "turn", "sequence",
                                            "obstacle"));
 
-// Steady state over the last 7 gait cycles (t = 8.8 s … 20 s): the CoM velocity in the robot
-// frame and the yaw rate, each within 5 % of the command's size, |v − v_cmd| ≤ 0.05 |v_cmd| per
-// component (x, y, yaw). The CoM sways and, turning, circles the turning centre, so the velocity
-// is that of its mean over each gait cycle (every command-period sample of 2 steps), rotated
-// into the heading between two consecutive cycles.
+// Steady state over the last 7 gait cycles (t = 8.8 s … 20 s, walkgen_test::mean_velocity): the
+// CoM velocity in the robot frame and the yaw rate, each within 5 % of the command's size,
+// |v − v_cmd| ≤ 0.05 |v_cmd| per component (x, y, yaw).
 void expect_tracking(const std::string& name, const Eigen::Vector3d& command) {
   const ScenarioRun& run = run_of(name);
-  const std::size_t per_tick = run.samples.size() / run.states.size();
-  const int first = 88, cycles = 6, cycle = 16;  // cycle means from tick 88 to tick 200
-  auto mean_of_cycle = [&](int tick) {
-    EXPECT_LE(std::size_t(tick + cycle) * per_tick, run.samples.size());
-    Eigen::Vector3d m = Eigen::Vector3d::Zero();  // x, y, heading
-    const std::size_t a = std::size_t(tick) * per_tick, b = std::size_t(tick + cycle) * per_tick;
-    for (std::size_t i = a; i < b; ++i) {
-      const auto& o = run.samples[i];
-      m += Eigen::Vector3d(o.com_x[0], o.com_y[0],
-                           (o.left.motion.q.position + o.right.motion.q.position) / 2);
-    }
-    return Eigen::Vector3d(m / double(b - a));
-  };
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int c = 0; c < cycles; ++c) {
-    const Eigen::Vector3d a = mean_of_cycle(first + c * cycle);
-    const Eigen::Vector3d b = mean_of_cycle(first + (c + 1) * cycle);
-    const double q = (a[2] + b[2]) / 2, dx = b[0] - a[0], dy = b[1] - a[1];
-    mean += Eigen::Vector3d(std::cos(q) * dx + std::sin(q) * dy,
-                            -std::sin(q) * dx + std::cos(q) * dy, b[2] - a[2]);
-  }
-  mean /= cycles * cycle * hrp2().t;
+  ASSERT_EQ(run.states.size(), 200u);
+  const Eigen::Vector3d mean = walkgen_test::mean_velocity(run, 88, 6, 16, hrp2().t);
   const double speed = command.head<2>().norm();
   for (int i = 0; i < 3; ++i) {
     const double size = i < 2 ? speed : std::abs(command[2]);

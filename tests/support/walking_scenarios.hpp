@@ -4,6 +4,7 @@
 // the spot, a changing command sequence and obstacle avoidance.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,34 @@ ScenarioRun run_scenario(const Scenario& sc, walkgen::WalkingSettings<double> s)
     }
   }
   return run;
+}
+
+/// Steady-state walking velocity of a run: the CoM velocity in the robot frame (x, y) and the
+/// yaw rate, from `cycles` consecutive gait cycles (2 steps of `cycle` ticks each) starting at
+/// tick `first`. The CoM sways and, turning, circles the turning centre, so the velocity is that
+/// of its mean over each gait cycle (every command-period sample), rotated into the heading
+/// between two consecutive cycles. Needs first + (cycles + 1) cycle ≤ ticks.
+inline Vector3d mean_velocity(const ScenarioRun& run, int first, int cycles, int cycle, double t) {
+  const std::size_t per_tick = run.samples.size() / run.states.size();
+  auto mean_of_cycle = [&](int tick) {
+    Vector3d m = Vector3d::Zero();  // x, y, heading
+    const std::size_t a = std::size_t(tick) * per_tick, b = std::size_t(tick + cycle) * per_tick;
+    for (std::size_t i = a; i < b && i < run.samples.size(); ++i) {
+      const auto& o = run.samples[i];
+      m += Vector3d(o.com_x[0], o.com_y[0],
+                    (o.left.motion.q.position + o.right.motion.q.position) / 2);
+    }
+    return Vector3d(m / double(b - a));
+  };
+  Vector3d mean = Vector3d::Zero();
+  for (int c = 0; c < cycles; ++c) {
+    const Vector3d a = mean_of_cycle(first + c * cycle);
+    const Vector3d b = mean_of_cycle(first + (c + 1) * cycle);
+    const double q = (a[2] + b[2]) / 2, dx = b[0] - a[0], dy = b[1] - a[1];
+    mean += Vector3d(std::cos(q) * dx + std::sin(q) * dy, -std::sin(q) * dx + std::cos(q) * dy,
+                     b[2] - a[2]);
+  }
+  return mean / (cycles * cycle * t);
 }
 
 }  // namespace walkgen_test
