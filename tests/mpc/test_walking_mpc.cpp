@@ -157,6 +157,10 @@ TEST_P(Scenario, FootstepsAreFeasibleAndRelativeYawIsLimited) {
     }
   }
   EXPECT_LE(worst_hull, 1e-3) << "a planned footstep leaves its feasibility polygon";
+  // The robot gets past every obstacle: its CoM ends beyond the far side of the margin circle.
+  for (const auto& ob : walkgen_test::scenario(GetParam()).obstacles) {
+    EXPECT_GT(run.states.back().com_x[0], ob.x + ob.radius + ob.margin);
+  }
   // The interpolated feet: relative yaw and its rate within their limits at every sample.
   double worst_yaw = 0, worst_rate = 0;
   for (const auto& o : run.samples) {
