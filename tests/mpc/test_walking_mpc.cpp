@@ -314,6 +314,18 @@ TEST(WalkingMpc, CorrectionIterationsBoundTheLinearisationError) {
   }
 }
 
+// The QP's warm start follows the receding horizon (the active set shifted by one sample, and by
+// one footstep at a landing): few active-set changes per tick. Without the shift the straight
+// walk needed 9.8 per tick.
+TEST_P(Scenario, TheWarmStartFollowsTheHorizon) {
+  const ScenarioRun& run = run_of(GetParam());
+  double changes = 0;
+  for (const auto& r : run.results) changes += r.qp_iterations;
+  changes /= double(run.results.size());
+  EXPECT_LE(changes, 5.0);
+  RecordProperty("active_set_changes_per_tick", std::to_string(changes));
+}
+
 // --- Jacobians of every constraint block against central differences, typed over sizes --------
 template <int N_, int Foot_, int Hull_>
 struct Config {

@@ -156,6 +156,52 @@ TEST(DenseQp, WarmStartAfterInitRebuildsTheActiveSet) {
   EXPECT_LE((qp.result().x - p.x_star).lpNorm<Eigen::Infinity>(), 1e-8);
 }
 
+// A receding horizon renames its constraints from one solve to the next. Here: the same problem
+// with its rows and variables renamed cyclically by one. Renaming the previous active set along
+// makes the warm start exact; without it the solver must repair it.
+TEST(DenseQp, RenamedWarmStartFollowsAShiftedProblem) {
+  QpFactory f(78);
+  QpProblem p = f.make(30, 45, QpKind::generic);
+  // Row r of the new problem is row r + 1 of the old one, variable j is old variable j + 1.
+  const int n = 30, m = 45;
+  QpProblem q = p;
+  Eigen::VectorXi perm(n);
+  for (int j = 0; j < n; ++j) perm[j] = (j + 1) % n;
+  Eigen::MatrixXd H(n, n), A(m, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) H(i, j) = p.H(perm[i], perm[j]);
+  }
+  for (int r = 0; r < m; ++r) {
+    for (int j = 0; j < n; ++j) A(r, j) = p.A((r + 1) % m, perm[j]);
+    q.lb[r] = p.lb[(r + 1) % m];
+    q.ub[r] = p.ub[(r + 1) % m];
+  }
+  for (int j = 0; j < n; ++j) {
+    q.g[j] = p.g[perm[j]];
+    q.l[j] = p.l[perm[j]];
+    q.u[j] = p.u[perm[j]];
+  }
+  q.H = H;
+  q.A = A;
+  DenseQp<double> cold(n, m), plain(n, m), renamed(n, m);
+  ASSERT_EQ(solve_problem(cold, q), QpStatus::solved);
+  for (DenseQp<double>* qp : {&plain, &renamed}) ASSERT_EQ(solve_problem(*qp, p), QpStatus::solved);
+  renamed.rename_warm_start([&](int c) {
+    if (c < m) return (c + m - 1) % m;  // row r + 1 → r
+    return m + (c - m + n - 1) % n;     // variable j + 1 → j
+  });
+  ASSERT_EQ(solve_problem(plain, q), QpStatus::solved);
+  ASSERT_EQ(solve_problem(renamed, q), QpStatus::solved);
+  EXPECT_EQ(renamed.result().iterations, 0);
+  EXPECT_GT(plain.result().iterations, 0);
+  EXPECT_LE((renamed.result().x - cold.result().x).lpNorm<Eigen::Infinity>(), 1e-8);
+  EXPECT_LE((plain.result().x - cold.result().x).lpNorm<Eigen::Infinity>(), 1e-8);
+  // Constraints renamed to −1 are left out; the result is still the optimum.
+  renamed.rename_warm_start([](int) { return -1; });
+  ASSERT_EQ(solve_problem(renamed, q), QpStatus::solved);
+  EXPECT_LE((renamed.result().x - cold.result().x).lpNorm<Eigen::Infinity>(), 1e-8);
+}
+
 TEST(DenseQp, EqualityConstrainedMatchesKktSystem) {
   QpFactory f(3);
   const int n = 12, m = 5;

@@ -265,6 +265,7 @@ class WalkingMpc {
     set_state(state);
     initial_plan();
     qp_.reset_warm_start();
+    shifted_samples_ = shifted_steps_ = 0;
   }
 
   /// Replaces the obstacles (world frame). No allocation up to obstacle_capacity().
@@ -296,6 +297,7 @@ class WalkingMpc {
     result_.qp_iterations = 0;
     result_.message = "";
     prepare_tick();
+    shift_warm_start();
     const int most = s_.sqp_iterations + s_.sqp_corrections;
     for (int it = 0; it < most; ++it) {
       if (it >= s_.sqp_iterations && result_.constraint_violation <= s_.sqp_tolerance) break;
@@ -335,7 +337,9 @@ class WalkingMpc {
     state_.swing = swing_foot_sample(timing, state_.swing, tau0, target, tau0 + s_.t).motion;
     state_.time += s_.t;
     shift_jerks();
+    ++shifted_samples_;
     if (++state_.phase < S_) return;
+    ++shifted_steps_;
     // The swing foot lands: it supports the next step; the old support foot will swing.
     state_.phase = 0;
     ++state_.step_count;
@@ -550,6 +554,45 @@ class WalkingMpc {
     const Scalar dy = lateral + side * s_.foot_distance / cos(turn / Scalar(2));
     dx_world = cos(h) * dx - sin(h) * dy;
     dy_world = sin(h) * dx + cos(h) * dy;
+  }
+
+  /// Moves the QP's warm-start active set along with the plan: advance() shifted the horizon by
+  /// shifted_samples_ samples and shifted_steps_ landings, so the constraint that was active on
+  /// sample j (footstep i) is now the one on sample j − samples (footstep i − steps).
+  void shift_warm_start() {
+    const Index ds = shifted_samples_, di = shifted_steps_;
+    shifted_samples_ = shifted_steps_ = 0;
+    if (ds == 0) return;
+    const Index fe = foot_edges(), he = hull_edges(), m = num_rows();
+    const Index hull0 = N_ * fe, yaw0 = hull0 + nf_ * he, obstacle0 = yaw0 + 2 * nf_,
+                terminal0 = obstacle0 + nf_ * cap_obstacles_;
+    // Index i (0-based) of a block of `count` entries per step or sample, moved by `by`.
+    auto moved = [](Index i, Index by, Index count) { return i >= by && i - by < count; };
+    qp_.rename_warm_start([&](int c) -> int {
+      Index r = c;
+      if (r < hull0) {  // ZMP: sample j = r / fe
+        return moved(r / fe, ds, N_) ? int(r - ds * fe) : -1;
+      }
+      if (r < yaw0) {  // feasibility: step i − 1 = (r − hull0) / he
+        return moved((r - hull0) / he, di, nf_) ? int(r - di * he) : -1;
+      }
+      if (r < obstacle0) {  // relative yaw and rate: step i − 1 = (r − yaw0) mod nf
+        return moved((r - yaw0) % nf_, di, nf_) ? int(r - di) : -1;
+      }
+      if (r < terminal0) {  // obstacles: step i − 1 = (r − obstacle0) mod nf
+        return moved((r - obstacle0) % nf_, di, nf_) ? int(r - di) : -1;
+      }
+      if (r < m) return c;  // terminal capture point
+      // Bounds: jerks move by samples, footsteps by steps.
+      const Index v = r - m;
+      for (Index base : {ix_u(), iy_u()}) {
+        if (v >= base && v < base + N_) return moved(v - base, ds, N_) ? int(r - ds) : -1;
+      }
+      for (Index base : {ix_f(), iy_f(), iq_f()}) {
+        if (v >= base && v < base + nf_) return moved(v - base, di, nf_) ? int(r - di) : -1;
+      }
+      return -1;
+    });
   }
 
   /// Per-tick data that do not depend on the iterate: step membership, velocity references,
@@ -838,6 +881,7 @@ class WalkingMpc {
   Plan plan_;
   Result result_;
   Vector3 command_ = Vector3::Zero();
+  Index shifted_samples_ = 0, shifted_steps_ = 0;  // advance()s since the last solve()
 };
 
 }  // namespace walkgen

@@ -245,6 +245,29 @@ class DenseQp {
     cache_valid_ = false;
   }
 
+  /// Renames the constraints of the active set that the next warm start begins from:
+  /// `rename(c)` returns the new index of constraint c (rows 0..m−1, then bounds m..m+n−1), or
+  /// −1 to leave it out. For receding-horizon problems, whose rows move by one sample from one
+  /// solve to the next: the warm start then begins where the last solve ended. Allocation-free.
+  template <typename Rename>
+  void rename_warm_start(Rename&& rename) {
+    if (!have_previous_) return;
+    Index kept = 0;
+    for (Index k = 0; k < q_; ++k) {
+      const int c = rename(active_[k]);
+      if (c < 0 || c >= m_ + n_) continue;
+      bool duplicate = false;
+      for (Index j = 0; j < kept; ++j) duplicate = duplicate || active_[j] == c;
+      if (duplicate) continue;
+      active_[kept] = c;
+      active_sign_[kept] = active_sign_[k];
+      lambda_[kept] = lambda_[k];
+      ++kept;
+    }
+    q_ = kept;
+    cache_valid_ = false;
+  }
+
   /// Solves the problem set by init()/update(). Allocation-free.
   const Result& solve();
 
