@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
+  libtinyxml2-dev libmujoco-dev
   clang-format python3-numpy python3-matplotlib
 )
 

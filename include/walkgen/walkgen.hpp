@@ -8,6 +8,7 @@
 #include "walkgen/interpolation/polynomial.hpp"
 #include "walkgen/interpolation/swing_foot.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/kinematics/kinematic_tree.hpp"
 #include "walkgen/model/lipm.hpp"
 #include "walkgen/model/support_polygon.hpp"
 #include "walkgen/mpc/settings.hpp"
