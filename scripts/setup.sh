@@ -6,7 +6,8 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
-  libtinyxml2-dev libmujoco-dev
+  libtinyxml2-dev libmujoco-dev libceres-dev liborocos-kdl-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri
   clang-format python3-numpy python3-matplotlib
 )
 

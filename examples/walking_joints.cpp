@@ -1,0 +1,61 @@
+// Pattern to joints (thesis §2.4.2, §6.3): a Heicub walk of the NMPC generator, interpolated at
+// the command period, turned into joint trajectories of walkgen's humanoid (models/) by the
+// Ceres whole-body inverse kinematics, one warm-started solve per sample.
+//
+// Writes walking_joints.csv: time, then one column per joint named as in the URDF (q [rad]),
+// then the root link's position (base_x, base_y, base_z [m]).
+//   walking_joints [--ticks N] [--out FILE]
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "support/humanoid_ik.hpp"
+
+int main(int argc, char** argv) {
+  int ticks = 32;  // two gait cycles of 6.4 s
+  std::string out = "walking_joints.csv";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--ticks") == 0) ticks = std::atoi(argv[i + 1]);
+    if (std::strcmp(argv[i], "--out") == 0) out = argv[i + 1];
+  }
+  if (ticks < 1) {
+    std::fprintf(stderr, "walking_joints: expected --ticks >= 1\n");
+    return 2;
+  }
+  const Eigen::Vector3d command(0.02, 0.0, 0.05);  // within heicub_settings().max_command
+  std::printf("walking_joints: NMPC walk of %d ticks, command (%.3f, %.3f, %.3f)\n", ticks,
+              command.x(), command.y(), command.z());
+  const auto samples = walkgen_test::heicub_walk(command, ticks);
+
+  const walkgen::KinematicTree<double> tree = walkgen_test::humanoid_tree();
+  walkgen_test::HumanoidIk ik(tree);
+  walkgen_test::start_walk(ik, samples.front());
+
+  std::ofstream csv(out);
+  csv << "time";
+  for (const auto& name : tree.joint_names()) csv << ',' << name;
+  csv << ",base_x,base_y,base_z\n";
+  csv.precision(10);
+  int failures = 0, iterations = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const walkgen::IkResult r = ik.solve(walkgen::ik_target(samples[k]));
+    failures += r.status != walkgen::IkStatus::converged;  // the previous q is kept and written
+    iterations += r.iterations;
+    csv << samples[k].time;
+    for (Eigen::Index j = 0; j < ik.q().size(); ++j) csv << ',' << ik.q()[j];
+    const Eigen::Vector3d& p = ik.base_position_W();
+    csv << ',' << p.x() << ',' << p.y() << ',' << p.z() << '\n';
+    if ((k + 1) % 200 == 0 || k + 1 == samples.size()) {
+      std::printf("  t = %6.2f s: %zu / %zu samples, %d not converged\n", samples[k].time, k + 1,
+                  samples.size(), failures);
+    }
+  }
+  std::printf(
+      "walking_joints: wrote %s (%zu rows, %d joints), %.1f LM iterations per sample, "
+      "%d not converged\n",
+      out.c_str(), samples.size(), tree.num_joints(), double(iterations) / double(samples.size()),
+      failures);
+  return failures == 0 && csv.good() ? 0 : 1;
+}

@@ -1,0 +1,194 @@
+#pragma once
+/// @file
+/// The robot interface (DESIGN.md §1, "robot I/O"): joint position commands in; measured joints,
+/// ankle force-torque sensors, chest stereo images and time out. Eigen only: a simulator
+/// (walkgen/mujoco/mujoco_robot.hpp, target walkgen::mujoco) or a real robot implements it.
+///
+/// Also the measured zero moment point from the two ankle force-torque sensors (thesis §2.1.2,
+/// eq. 2.11-2.17), a pure function of the readings.
+///
+/// Frames: W world (x forward, y left, z up), S an ankle sensor frame (z up through the sole
+/// centre when the foot is flat, the sole d metres below its origin), C a camera frame (x along
+/// the optical axis, y left, z up; models/README.md). Units SI.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/foot.hpp"
+
+namespace walkgen {
+
+/// What a robot reports after a step. Anything but `ok` means the robot stopped: step() does
+/// nothing more until reset() (a backend never continues silently).
+enum class RobotStatus : std::uint8_t {
+  ok,        ///< stepping normally
+  fallen,    ///< the base dropped below its fall height (80 % of nominal by default)
+  diverged,  ///< the state became non-finite or the simulator gave up (bad accelerations)
+};
+
+/// "ok", "fallen" or "diverged", e.g. for logs.
+constexpr const char* to_string(RobotStatus status) {
+  switch (status) {
+    case RobotStatus::ok:
+      return "ok";
+    case RobotStatus::fallen:
+      return "fallen";
+    case RobotStatus::diverged:
+      return "diverged";
+  }
+  return "unknown";
+}
+
+/// The outcome of a joint command (convention 10c: numerical problems are a status, not thrown).
+enum class JointCommandStatus : std::uint8_t {
+  accepted,  ///< the targets are applied from the next step on
+  rejected,  ///< a target was not finite: the previous targets are kept
+};
+
+/// One 6-axis ankle force-torque sensor (thesis fig. 2.3).
+struct ForceTorqueReading {
+  /// Force [N] that the foot below the sensor exerts on the leg above it, in the sensor frame S:
+  /// f_z > 0 while the foot carries weight, about -(foot mass) g while it swings.
+  Eigen::Vector3d force_S = Eigen::Vector3d::Zero();
+  /// Torque [N m] of the same wrench about the sensor origin, in S.
+  Eigen::Vector3d torque_S = Eigen::Vector3d::Zero();
+  /// The sensor frame in the world: p_W = pose_W_S * p_S.
+  Eigen::Isometry3d pose_W_S = Eigen::Isometry3d::Identity();
+};
+
+/// Everything a robot measures, at one instant.
+struct RobotOutput {
+  double time = 0.0;                     ///< [s] since reset()
+  Eigen::VectorXd q;                     ///< measured joint positions [rad], joint_names() order
+  Eigen::VectorXd dq;                    ///< measured joint velocities [rad/s], same order
+  std::array<ForceTorqueReading, 2> ft;  ///< ankle sensors, indexed by Foot (left, right)
+  double base_height = 0.0;              ///< [m] height of the floating base (root link) in W
+  RobotStatus status = RobotStatus::ok;
+  std::string message;  ///< why, when status is not ok (e.g. "base height 0.31 m < 0.40 m")
+
+  const ForceTorqueReading& sensor(Foot foot) const { return ft[static_cast<int>(foot)]; }
+};
+
+/// One camera image, rows from the top, columns from the left.
+struct CameraImage {
+  int width = 0;                  ///< [px]
+  int height = 0;                 ///< [px]
+  std::vector<std::uint8_t> rgb;  ///< width * height * 3 bytes, row-major
+  std::vector<float> depth;       ///< [m] along the optical axis, width * height, row-major;
+                                  ///< background (nothing hit) reads far_clip
+  double near_clip = 0.0;         ///< [m] the depth range that can be measured
+  double far_clip = 0.0;          ///< [m]
+  double fovy = 0.0;              ///< vertical field of view [rad]
+  Eigen::Isometry3d pose_W_C = Eigen::Isometry3d::Identity();  ///< camera frame in the world
+};
+
+/// Whether images could be produced (offscreen rendering needs a GL context).
+enum class RenderStatus : std::uint8_t { ok, unavailable };
+
+/// The chest stereo pair.
+struct StereoImages {
+  CameraImage left;
+  CameraImage right;
+  RenderStatus status = RenderStatus::unavailable;
+  std::string message;  ///< "rendering unavailable: <why>" unless status is ok
+};
+
+/// What does not change while the robot runs.
+struct RobotInfo {
+  std::vector<std::string> joint_names;  ///< the order of commands and measurements
+  double ft_sensor_height = 0.0;         ///< d [m]: sensor origin above the sole (eq. 2.11-2.12)
+  double nominal_base_height = 0.0;      ///< [m] base height standing (reset state)
+  double fall_height = 0.0;              ///< [m] below this base height the robot has fallen
+  double timestep = 0.0;                 ///< [s] of one physics or control step
+  int image_width = 0;                   ///< [px]
+  int image_height = 0;                  ///< [px]
+};
+
+/// A robot: joint position targets in, measurements out. Blocks step (convention 13): the
+/// application owns the loop, the clock and the threads.
+class Robot {
+ public:
+  virtual ~Robot() = default;
+
+  virtual const RobotInfo& info() const = 0;
+
+  /// Joint position targets [rad] in info().joint_names order, applied from the next step on.
+  /// @throws walkgen::invalid_argument when q_target has the wrong size.
+  /// @return rejected (and the previous targets kept) when a target is not finite.
+  virtual JointCommandStatus set_joint_targets(
+      const Eigen::Ref<const Eigen::VectorXd>& q_target) = 0;
+
+  /// Advances by `duration` [s] (rounded to whole timesteps, at least one) and returns the status;
+  /// once it is not ok, step() does nothing until reset().
+  /// @throws walkgen::invalid_argument when duration is not finite and > 0.
+  virtual RobotStatus step(double duration) = 0;
+
+  /// The latest measurements.
+  virtual const RobotOutput& output() const = 0;
+
+  /// Renders both chest cameras at the current state; status unavailable (with the reason) when
+  /// there is no renderer.
+  virtual const StereoImages& render_cameras() = 0;
+
+  /// Back to the initial state (time 0, status ok).
+  virtual void reset() = 0;
+
+ protected:
+  Robot() = default;
+  Robot(const Robot&) = default;
+  Robot& operator=(const Robot&) = default;
+};
+
+/// The measured zero moment point and the weight it rests on.
+struct MeasuredZmp {
+  Eigen::Vector3d zmp_W = Eigen::Vector3d::Zero();  ///< [m] on the sole plane(s), world frame
+  double normal_force = 0.0;  ///< [N] Σ f_z of the feet in contact (eq. 2.16 denominator)
+  std::array<bool, 2> in_contact{{false, false}};  ///< per Foot: f_z >= min_normal_force
+  bool valid = false;  ///< false when no foot carries min_normal_force (zmp_W is then zero)
+};
+
+/// The zero moment point from the two ankle force-torque sensors (thesis eq. 2.11-2.17).
+///
+/// Per foot in its sensor frame (eq. 2.11-2.12): p_S = ((-τ_y - f_x d) / f_z, (τ_x - f_y d) / f_z,
+/// -d), i.e. the point on the sole where the wrench reduces to a force (zero horizontal moment);
+/// then to the world with pose_W_S. Both feet (eq. 2.14-2.17): p = Σ p_i f_i,z / Σ f_i,z with f_i,z
+/// the world vertical force, over the feet carrying at least min_normal_force (a swinging foot
+/// only weighs on its sensor and would pull the average away).
+///
+/// @param ft  the left and right readings (index Foot), as in RobotOutput::ft
+/// @param sensor_height  d [m], sensor origin above the sole, > 0
+/// @param min_normal_force  [N] a foot counts as in contact from this vertical force, > 0
+/// @throws walkgen::invalid_argument when sensor_height or min_normal_force is not finite and > 0.
+inline MeasuredZmp measured_zmp(const std::array<ForceTorqueReading, 2>& ft, double sensor_height,
+                                double min_normal_force = 5.0) {
+  check_positive("measured_zmp: sensor_height", sensor_height, "a finite height > 0 m");
+  check_positive("measured_zmp: min_normal_force", min_normal_force, "a finite force > 0 N");
+  MeasuredZmp result;
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 2; ++i) {
+    const ForceTorqueReading& r = ft[i];
+    const double fz_S = r.force_S.z();
+    const double fz_W = (r.pose_W_S.linear() * r.force_S).z();
+    if (!(fz_S >= min_normal_force && fz_W >= min_normal_force)) continue;  // also NaN
+    const Eigen::Vector3d p_S((-r.torque_S.y() - r.force_S.x() * sensor_height) / fz_S,
+                              (r.torque_S.x() - r.force_S.y() * sensor_height) / fz_S,
+                              -sensor_height);
+    weighted += (r.pose_W_S * p_S) * fz_W;
+    result.normal_force += fz_W;
+    result.in_contact[i] = true;
+  }
+  if (result.normal_force > 0.0) {
+    result.zmp_W = weighted / result.normal_force;
+    result.valid = result.zmp_W.allFinite();
+  }
+  return result;
+}
+
+}  // namespace walkgen

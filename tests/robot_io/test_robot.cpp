@@ -1,0 +1,80 @@
+// The measured zero moment point from two ankle force-torque sensors (thesis eq. 2.11-2.17).
+#include "walkgen/robot_io/robot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using walkgen::ForceTorqueReading;
+using walkgen::measured_zmp;
+
+ForceTorqueReading reading(const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                           const Eigen::Vector3d& position, double yaw) {
+  ForceTorqueReading r;
+  r.force_S = force;
+  r.torque_S = torque;
+  r.pose_W_S = Eigen::Translation3d(position) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  return r;
+}
+
+// Worked by hand, d = 0.03 m:
+// left, sensor at (0, 0.07, 0.03), not turned, f = (2, -1, 100) N, tau = (0.5, -1, 0.1) N m:
+//   eq. 2.11 p_x = (1 - 2 * 0.03) / 100 = 0.0094, eq. 2.12 p_y = (0.5 + 1 * 0.03) / 100 = 0.0053
+//   -> world (0.0094, 0.0753, 0)
+// right, sensor at (0.1, -0.07, 0.03), turned 90 deg about z, f = (0, 0, 300), tau = (0, -3, 0):
+//   p_S = (0.01, 0, -0.03) -> world (0.1 - 0, -0.07 + 0.01, 0) = (0.1, -0.06, 0)
+// eq. 2.16-2.17: x = (0.0094 * 100 + 0.1 * 300) / 400 = 0.07735,
+//                y = (0.0753 * 100 - 0.06 * 300) / 400 = -0.026175
+TEST(MeasuredZmp, MatchesHandComputedDoubleSupport) {
+  const std::array<ForceTorqueReading, 2> ft{
+      {reading({2, -1, 100}, {0.5, -1, 0.1}, {0, 0.07, 0.03}, 0.0),
+       reading({0, 0, 300}, {0, -3, 0}, {0.1, -0.07, 0.03}, EIGEN_PI / 2)}};
+  const walkgen::MeasuredZmp zmp = measured_zmp(ft, 0.03);
+  ASSERT_TRUE(zmp.valid);
+  EXPECT_TRUE(zmp.in_contact[0] && zmp.in_contact[1]);
+  EXPECT_NEAR(zmp.normal_force, 400.0, 1e-12);
+  EXPECT_NEAR(zmp.zmp_W.x(), 0.07735, 1e-12);
+  EXPECT_NEAR(zmp.zmp_W.y(), -0.026175, 1e-12);
+  EXPECT_NEAR(zmp.zmp_W.z(), 0.0, 1e-12);
+}
+
+// Property of eq. 2.8: about the single-support ZMP the sensor's wrench has no horizontal moment.
+TEST(MeasuredZmp, HorizontalMomentVanishesAboutTheZmpOfOneFoot) {
+  const double d = 0.03;
+  const Eigen::Vector3d f(3.0, -4.0, 180.0);
+  const Eigen::Vector3d tau(1.2, -0.7, 0.3);
+  const ForceTorqueReading left = reading(f, tau, {0.2, 0.1, d}, 0.4);
+  ForceTorqueReading right = left;
+  right.force_S = Eigen::Vector3d(0, 0, -7.8);  // a swinging foot only weighs on its sensor
+  right.torque_S.setZero();
+  const walkgen::MeasuredZmp zmp = measured_zmp({{left, right}}, d);
+  ASSERT_TRUE(zmp.valid);
+  EXPECT_TRUE(zmp.in_contact[0]);
+  EXPECT_FALSE(zmp.in_contact[1]);
+  const Eigen::Vector3d p_S = left.pose_W_S.inverse() * zmp.zmp_W;
+  const Eigen::Vector3d moment_S = (Eigen::Vector3d::Zero() - p_S).cross(f) + tau;
+  EXPECT_NEAR(moment_S.x(), 0.0, 1e-12);
+  EXPECT_NEAR(moment_S.y(), 0.0, 1e-12);
+  EXPECT_NEAR(p_S.z(), -d, 1e-12);
+}
+
+TEST(MeasuredZmp, NoContactIsInvalidAndBadHeightsThrow) {
+  const ForceTorqueReading hanging =
+      reading({0, 0, -7.8}, Eigen::Vector3d::Zero(), {0, 0, 0.5}, 0.0);
+  const walkgen::MeasuredZmp zmp = measured_zmp({{hanging, hanging}}, 0.03);
+  EXPECT_FALSE(zmp.valid);
+  EXPECT_EQ(zmp.normal_force, 0.0);
+  EXPECT_THROW(measured_zmp({{hanging, hanging}}, 0.0), walkgen::invalid_argument);
+  EXPECT_THROW(measured_zmp({{hanging, hanging}}, std::nan("")), walkgen::invalid_argument);
+  EXPECT_THROW(measured_zmp({{hanging, hanging}}, 0.03, -1.0), walkgen::invalid_argument);
+}
+
+TEST(RobotStatus, NamesEveryValue) {
+  EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::ok), "ok");
+  EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::fallen), "fallen");
+  EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::diverged), "diverged");
+}
+
+}  // namespace
