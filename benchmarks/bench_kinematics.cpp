@@ -1,8 +1,9 @@
 // Kinematics of walkgen's humanoid (models/): forward kinematics in double and in ceres::Jet, the
 // centre of mass, and one warm-started whole-body IK solve (walkgen::CeresInverseKinematics) per
-// command sample of a Heicub walk. Side by side, where KDL is installed (Debian:
-// liborocos-kdl-dev): KDL's ChainIkSolverPos_LMA on the two leg chains (root link to sole) for
-// the same samples, each leg warm-started from the previous sample. Per-solve medians and the
+// command sample of a Heicub walk, with the analytic residual Jacobian (the default) and with
+// Ceres' automatic differentiation over the FK in Jets. Side by side, where KDL is installed
+// (Debian: liborocos-kdl-dev): KDL's ChainIkSolverPos_LMA on the two leg chains (root link to sole)
+// for the same samples, each leg warm-started from the previous sample. Per-solve medians and the
 // ratio are reported as counters (median_us, ratio_walkgen_over_kdl).
 //   build/release/benchmarks/bench_kinematics --benchmark_filter=Ik
 #include <benchmark/benchmark.h>
@@ -107,11 +108,15 @@ void BM_CenterOfMassJacobian(benchmark::State& state) {
 }
 BENCHMARK(BM_CenterOfMassJacobian);
 
-/// One warm-started whole-body IK solve per command sample, walking through walk() in order.
+/// One warm-started whole-body IK solve per command sample, walking through walk() in order,
+/// with the analytic residual Jacobian (the default) or Ceres' automatic differentiation.
+template <walkgen::IkDerivatives Derivatives>
 void BM_IkWarmStartedPerSample(benchmark::State& state) {
   const auto& samples = walk();
   const auto& solution = walk_solution();
-  HumanoidIk ik(tree());
+  walkgen::CeresIkSettings settings;
+  settings.derivatives = Derivatives;
+  HumanoidIk ik(tree(), settings);
   std::vector<double> times;
   std::size_t k = 0;
   int iterations = 0, failures = 0;
@@ -133,12 +138,14 @@ void BM_IkWarmStartedPerSample(benchmark::State& state) {
     failures += r.status != walkgen::IkStatus::converged;
     ++k;
   }
-  walkgen_ik_median_us = median(times);
-  state.counters["median_us"] = walkgen_ik_median_us;
+  const double median_us = median(times);
+  if (Derivatives == walkgen::IkDerivatives::analytic) walkgen_ik_median_us = median_us;
+  state.counters["median_us"] = median_us;
   state.counters["lm_iterations"] = double(iterations) / double(times.size());
   state.counters["failures"] = failures;
 }
-BENCHMARK(BM_IkWarmStartedPerSample);
+BENCHMARK_TEMPLATE(BM_IkWarmStartedPerSample, walkgen::IkDerivatives::analytic);
+BENCHMARK_TEMPLATE(BM_IkWarmStartedPerSample, walkgen::IkDerivatives::automatic);
 
 #ifdef WALKGEN_HAVE_KDL
 /// The KDL chain from the root link to `tip`, built from the tree's description: per joint a

@@ -35,8 +35,8 @@ ANKLE_HEIGHT = 0.06              # ankle joints above the sole [m]
 FT_SENSOR_HEIGHT = 0.03          # ankle force-torque sensor frame above the sole, d in eq. 2.11
 HIP_BELOW_ROOT = 0.06            # hip pitch/roll joints below the root frame [m]
 HIP_YAW_BELOW_HIP = 0.04         # hip yaw joint below the hip pitch/roll joints [m]
-THIGH = 0.2                      # hip pitch/roll joints to knee [m]
-SHANK = 0.2                      # knee to ankle [m]
+THIGH = 0.22                     # hip pitch/roll joints to knee [m]
+SHANK = 0.22                     # knee to ankle [m]
 TORSO_PITCH_ABOVE_ROOT = 0.08    # torso pitch/roll joints above the root frame [m]
 TORSO_YAW_ABOVE_ROLL = 0.04      # torso yaw joint (chest frame) above the torso roll joint [m]
 CAMERA_BASELINE = 0.068          # distance of the two chest cameras [m]
@@ -45,7 +45,7 @@ CAMERA_PITCH = 0.1               # cameras look down by this angle [rad]
 CAMERA_IMAGE = (320, 240)        # width x height [px], 60 fps
 CAMERA_FOVY_DEG = 45             # vertical field of view [deg]
 CAMERA_HFOV = "1.00880"          # horizontal field of view [rad] = 2 atan(4/3 tan(22.5 deg))
-STAND_ANGLES = {"hip_pitch": -0.3, "knee": 0.6, "ankle_pitch": -0.3}  # MJCF keyframe "stand"
+STAND_ANGLES = {"hip_pitch": -0.5, "knee": 1.0, "ankle_pitch": -0.5}  # MJCF keyframe "stand"
 
 
 def box(size, xyz=(0.0, 0.0, 0.0)):

@@ -119,9 +119,11 @@ TEST(CeresInverseKinematics, RoundTripOfRandomReachableTargets) {
   EXPECT_GE(rate, 0.995);
 }
 
-/// IK at every command sample of a Heicub walk: converges every time, smooth joint motion.
-void walk_and_check(const Eigen::Vector3d& command, int ticks) {
-  const auto samples = walkgen_test::heicub_walk(command, ticks);
+/// IK at every command sample of a Heicub walk (heicub_settings() unchanged: com_z = 0.45 m) of
+/// scenario `name`: converges every time, smooth joint motion.
+void walk_and_check(const std::string& name, int ticks, int phase = 8) {
+  const auto samples = walkgen_test::heicub_walk(
+      [&](int k) { return walkgen_test::heicub_scenario_command(name, k, phase); }, ticks);
   HumanoidIk ik(tree());
   walkgen_test::start_walk(ik, samples.front());
   const double dt = walkgen::heicub_settings().command_period;
@@ -147,37 +149,101 @@ void walk_and_check(const Eigen::Vector3d& command, int ticks) {
     previous_q = ik.q();
   }
   std::printf(
-      "walk (%.3f, %.3f, %.3f): %zu samples, worst error %.2e, %.2f iterations per warm "
-      "solve, max joint speed %.3f rad/s, max jump of the joint speed %.4f rad/s\n",
-      command.x(), command.y(), command.z(), samples.size(), worst,
-      double(iterations) / double(samples.size() - 1), max_speed, max_jump);
+      "walk %s: %zu samples, 0 failures, worst error %.2e, %.2f iterations per warm solve, max "
+      "joint speed %.3f rad/s, max jump of the joint speed %.4f rad/s\n",
+      name.c_str(), samples.size(), worst, double(iterations) / double(samples.size() - 1),
+      max_speed, max_jump);
+  ::testing::Test::RecordProperty("samples", int(samples.size()));
+  ::testing::Test::RecordProperty("max_joint_speed", walkgen_test::scientific(max_speed));
+  ::testing::Test::RecordProperty("max_joint_speed_jump", walkgen_test::scientific(max_jump));
   // Walking at these speeds, no joint turns faster than 2 rad/s, and its finite-difference speed
   // changes by less than 0.1 rad/s from one 10 ms sample to the next (10 rad/s², no jumps).
   EXPECT_LT(max_speed, 2.0);
   EXPECT_LT(max_jump, 0.1);
 }
 
-TEST(CeresInverseKinematics, HeicubWalkForwardHasSmoothJoints) {
-  walk_and_check(Eigen::Vector3d(0.03, 0.0, 0.0), 32);
+// The pattern generator's scenarios at Heicub's speeds (walkgen_test::heicub_scenario_command):
+// two gait cycles (32 ticks of 0.4 s, 1280 samples) each; the sequence changes its command every
+// step (8 ticks) for five steps.
+TEST(CeresInverseKinematics, HeicubWalkStraightHasSmoothJoints) { walk_and_check("straight", 32); }
+
+TEST(CeresInverseKinematics, HeicubWalkSidewaysHasSmoothJoints) { walk_and_check("sideways", 32); }
+
+TEST(CeresInverseKinematics, HeicubWalkCurvedHasSmoothJoints) { walk_and_check("curved", 32); }
+
+TEST(CeresInverseKinematics, HeicubTurnOnTheSpotHasSmoothJoints) { walk_and_check("turn", 32); }
+
+TEST(CeresInverseKinematics, HeicubCommandSequenceHasSmoothJoints) {
+  walk_and_check("sequence", 40, 8);
 }
 
-TEST(CeresInverseKinematics, HeicubWalkCurvedHasSmoothJoints) {
-  walk_and_check(Eigen::Vector3d(0.02, 0.0, 0.05), 32);
-}
-
-TEST(CeresInverseKinematics, DynamicJointCountMatchesFixed) {
-  walkgen::CeresInverseKinematics<Eigen::Dynamic> dynamic(tree());
-  HumanoidIk fixed(tree());
-  std::mt19937 rng(7);
-  for (int i = 0; i < 5; ++i) {
+/// The analytic residual Jacobian equals Ceres' automatic one over the FK in Jets, with
+/// non-zero body points, base rotation vectors from 1e-5 to 0.8 rad, and both joint counts.
+template <int NumJoints>
+void check_analytic_jacobian() {
+  walkgen::CeresIkSettings s;
+  s.com_body_point = Eigen::Vector3d(0.01, -0.02, 0.03);
+  s.lf_body_point = Eigen::Vector3d(0.05, 0.01, 0.0);
+  s.rf_body_point = Eigen::Vector3d(-0.03, -0.02, 0.01);
+  s.foot_orientation_weight = 2.0;
+  s.com_weight = 0.5;
+  walkgen::CeresInverseKinematics<NumJoints> analytic(tree(), s);
+  s.derivatives = walkgen::IkDerivatives::automatic;
+  walkgen::CeresInverseKinematics<NumJoints> automatic(tree(), s);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst = 0.0;
+  for (int i = 0; i < 20; ++i) {
     const IkTarget target = random_reachable_target(rng);
-    walkgen_test::start_standing(dynamic, target.left_foot.position_W);
-    walkgen_test::start_standing(fixed, target.left_foot.position_W);
-    const auto a = dynamic.solve(target), b = fixed.solve(target);
-    EXPECT_EQ(a.status, b.status);
-    if (a.status == IkStatus::converged) {
-      EXPECT_LE(max_error(a), 1e-6);
-      EXPECT_TRUE(dynamic.q().isApprox(fixed.q(), 1e-6));
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(M_PI * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
+            .toRotationMatrix();
+    const Eigen::VectorXd q = walkgen_test::random_configuration(tree(), rng);
+    for (auto* ik : {&analytic, &automatic}) ik->set_initial_guess(Eigen::Vector3d::Zero(), R, q);
+    Eigen::VectorXd x(6 + q.size());
+    const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    x << u(rng), u(rng), u(rng), std::pow(10.0, -5.0 + 4.9 * (i % 5) / 4.0) * axis, q;
+    Eigen::VectorXd ra, rb;
+    Eigen::MatrixXd Ja, Jb;
+    analytic.residual_and_jacobian(target, x, ra, Ja);
+    automatic.residual_and_jacobian(target, x, rb, Jb);
+    ASSERT_EQ(Ja.rows(), 21);
+    ASSERT_EQ(Ja.cols(), 21);
+    EXPECT_LE((ra - rb).cwiseAbs().maxCoeff(), 1e-12);
+    worst = std::max(worst, (Ja - Jb).cwiseAbs().maxCoeff());
+  }
+  std::printf("analytic vs Jet residual Jacobian (joints %d): worst difference %.2e\n", NumJoints,
+              worst);
+  EXPECT_LE(worst, 1e-9);
+}
+
+TEST(CeresInverseKinematics, AnalyticJacobianMatchesJets) {
+  check_analytic_jacobian<walkgen_test::kHumanoidJoints>();
+  check_analytic_jacobian<Eigen::Dynamic>();
+}
+
+/// Both joint counts and both kinds of derivatives find the same solutions.
+TEST(CeresInverseKinematics, DynamicJointCountAndAutomaticDerivativesMatchFixed) {
+  HumanoidIk fixed(tree());
+  for (auto derivatives : {walkgen::IkDerivatives::analytic, walkgen::IkDerivatives::automatic}) {
+    walkgen::CeresIkSettings s;
+    s.derivatives = derivatives;
+    walkgen::CeresInverseKinematics<Eigen::Dynamic> dynamic(tree(), s);
+    HumanoidIk fixed_same(tree(), s);  // fixed joint count, these derivatives
+    std::mt19937 rng(7);
+    for (int i = 0; i < 5; ++i) {
+      const IkTarget target = random_reachable_target(rng);
+      walkgen_test::start_standing(dynamic, target.left_foot.position_W);
+      walkgen_test::start_standing(fixed_same, target.left_foot.position_W);
+      walkgen_test::start_standing(fixed, target.left_foot.position_W);
+      const auto a = dynamic.solve(target), b = fixed.solve(target), c = fixed_same.solve(target);
+      EXPECT_EQ(a.status, b.status);
+      EXPECT_EQ(c.status, b.status);
+      if (a.status == IkStatus::converged) {
+        EXPECT_LE(max_error(a), 1e-6);
+        EXPECT_TRUE(dynamic.q().isApprox(fixed.q(), 1e-6));
+        EXPECT_TRUE(fixed_same.q().isApprox(fixed.q(), 1e-6));
+      }
     }
   }
 }
@@ -237,6 +303,10 @@ TEST(CeresInverseKinematics, BadInputThrows) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(15);
   q[0] = std::numeric_limits<double>::infinity();
   EXPECT_THROW(ik.set_initial_guess(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q),
+               walkgen::invalid_argument);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  EXPECT_THROW(ik.residual_and_jacobian(IkTarget(), Eigen::VectorXd::Zero(20), r, J),
                walkgen::invalid_argument);
   // Out-of-limit guesses are clamped: the knee cannot bend backwards.
   q.setZero();

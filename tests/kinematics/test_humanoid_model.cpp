@@ -85,17 +85,17 @@ TEST(HumanoidModel, FramesAtZeroConfiguration) {
   EXPECT_NEAR((position("l_foot_ft_sensor") - l_sole).z(), 0.03, 1e-15);
   EXPECT_NEAR((position("r_foot_ft_sensor") - r_sole).z(), 0.03, 1e-15);
   EXPECT_NEAR((position("left_camera") - position("right_camera")).norm(), 0.068, 1e-15);
-  EXPECT_NEAR(-l_sole.z(), 0.52, 1e-12);  // straight legs: root 0.52 m above the soles
+  EXPECT_NEAR(-l_sole.z(), 0.56, 1e-12);  // straight legs: root 0.56 m above the soles
 }
 
 TEST(HumanoidModel, StandingComHeightWithBentKnees) {
-  // The MJCF keyframe "stand": hip pitch −0.3, knee 0.6, ankle pitch −0.3 rad: soles flat.
+  // The MJCF keyframe "stand": hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad: soles flat.
   const Tree tree = humanoid();
   Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
   for (const char* side : {"l_", "r_"}) {
-    q[tree.joint_index(std::string(side) + "hip_pitch")] = -0.3;
-    q[tree.joint_index(std::string(side) + "knee")] = 0.6;
-    q[tree.joint_index(std::string(side) + "ankle_pitch")] = -0.3;
+    q[tree.joint_index(std::string(side) + "hip_pitch")] = -0.5;
+    q[tree.joint_index(std::string(side) + "knee")] = 1.0;
+    q[tree.joint_index(std::string(side) + "ankle_pitch")] = -0.5;
   }
   auto ws = tree.make_workspace();
   tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q, ws);

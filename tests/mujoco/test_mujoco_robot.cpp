@@ -91,14 +91,14 @@ TEST(MujocoRobot, LoadsTheHumanoidAndMapsEveryName) {
   EXPECT_DOUBLE_EQ(info.timestep, 0.002);
   EXPECT_EQ(info.image_width, 320);
   EXPECT_EQ(info.image_height, 240);
-  EXPECT_NEAR(info.nominal_base_height, 0.5022, 1e-9);
-  EXPECT_NEAR(info.fall_height, 0.8 * 0.5022, 1e-9);
+  EXPECT_NEAR(info.nominal_base_height, 0.5062, 1e-9);
+  EXPECT_NEAR(info.fall_height, 0.8 * 0.5062, 1e-9);
   const walkgen::RobotOutput& out = robot.output();
   EXPECT_EQ(out.status, RobotStatus::ok);
   EXPECT_EQ(out.q.size(), 15);
-  EXPECT_NEAR(out.q[0], -0.3, 1e-12);  // stand: hip pitch -0.3, knee 0.6, ankle pitch -0.3
-  EXPECT_NEAR(out.q[3], 0.6, 1e-12);
-  EXPECT_NEAR(out.q[4], -0.3, 1e-12);
+  EXPECT_NEAR(out.q[0], -0.5, 1e-12);  // stand: hip pitch -0.5, knee 1.0, ankle pitch -0.5
+  EXPECT_NEAR(out.q[3], 1.0, 1e-12);
+  EXPECT_NEAR(out.q[4], -0.5, 1e-12);
   // The sensor sites 0.03 m above the soles, 0.14 m apart; both feet carry weight.
   EXPECT_NEAR(out.sensor(walkgen::Foot::left).pose_W_S.translation().y(), 0.07, 1e-6);
   EXPECT_NEAR(out.sensor(walkgen::Foot::right).pose_W_S.translation().y(), -0.07, 1e-6);

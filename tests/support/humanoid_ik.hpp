@@ -23,14 +23,14 @@ inline walkgen::KinematicTree<double> humanoid_tree() {
                                                 "/models/walkgen_humanoid.urdf");
 }
 
-/// The MJCF keyframe "stand": hip pitch −0.3, knee 0.6, ankle pitch −0.3 rad (soles flat).
+/// The MJCF keyframe "stand": hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad (soles flat).
 inline Eigen::VectorXd stand_configuration(const walkgen::KinematicTree<double>& tree) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
   for (const char* side : {"l_", "r_"}) {
     const std::string s(side);
-    q[tree.joint_index(s + "hip_pitch")] = -0.3;
-    q[tree.joint_index(s + "knee")] = 0.6;
-    q[tree.joint_index(s + "ankle_pitch")] = -0.3;
+    q[tree.joint_index(s + "hip_pitch")] = -0.5;
+    q[tree.joint_index(s + "knee")] = 1.0;
+    q[tree.joint_index(s + "ankle_pitch")] = -0.5;
   }
   return q;
 }
@@ -53,29 +53,52 @@ void start_standing(Ik& ik, const Eigen::Vector3d& left_sole_W, double yaw = 0.0
   ik.set_initial_guess(left_sole_W + R * offset, R, stand_configuration(ik.tree()));
 }
 
-/// CoM height of the IK walks [m]. At heicub_settings()' 0.45 m the support leg of the humanoid
-/// is within 0.1 mm of full stretch when the CoM sways over it: the IK fails at t = 3.73 s (CoM
-/// 8e-5 m short), and knees near straight turn fast (1.4 rad/s). 0.43 m keeps them bent.
-constexpr double kWalkComHeight = 0.43;
-
-/// A Heicub walk (thesis Table 6.1, walkgen::heicub_settings(), which matches the humanoid) of
-/// `ticks` NMPC ticks at a constant command, interpolated at the command period. The CoM walks
-/// at com_z = kWalkComHeight instead of the preset's 0.45 m.
-inline std::vector<walkgen::TrajectorySample<double>> heicub_walk(const Eigen::Vector3d& command,
-                                                                  int ticks) {
-  walkgen::WalkingSettings<double> s = walkgen::heicub_settings();
-  s.com_z = kWalkComHeight;
+/// A Heicub walk (thesis Table 6.1: walkgen::heicub_settings() unchanged, com_z = 0.45 m, which
+/// the humanoid's standing CoM matches) of `ticks` NMPC ticks, the command at tick k being
+/// command(k), interpolated at the command period.
+template <typename Command>
+std::vector<walkgen::TrajectorySample<double>> heicub_walk(const Command& command, int ticks) {
+  const walkgen::WalkingSettings<double> s = walkgen::heicub_settings();
   walkgen::WalkingMpc<double, 16> mpc(s);
   walkgen::WalkingInterpolator<double> interp(s);
   std::vector<walkgen::TrajectorySample<double>> samples(
       std::size_t(ticks * interp.samples_per_tick()));
   for (int k = 0; k < ticks; ++k) {
-    mpc.set_command(command);
+    mpc.set_command(command(k));
     mpc.solve();
     interp.interpolate(mpc, samples.data() + std::size_t(k * interp.samples_per_tick()));
     mpc.advance();
   }
   return samples;
+}
+
+/// A Heicub walk at a constant command.
+inline std::vector<walkgen::TrajectorySample<double>> heicub_walk(const Eigen::Vector3d& command,
+                                                                  int ticks) {
+  return heicub_walk([&command](int) { return command; }, ticks);
+}
+
+/// The pattern generator's scenarios (tests/support/walking_scenarios.hpp) at Heicub's speeds,
+/// within heicub_settings().max_command = (0.034 m/s, 0.0045 m/s, 0.075 rad/s): the command
+/// (v_x, v_y, ω_z) of scenario `name` at tick k. "sequence" changes it every `phase` ticks:
+/// forward, curve left, sideways, curve right, stop.
+inline Eigen::Vector3d heicub_scenario_command(const std::string& name, int k, int phase) {
+  if (name == "straight") return {0.034, 0.0, 0.0};
+  if (name == "sideways") return {0.0, 0.0045, 0.0};
+  if (name == "curved") return {0.03, 0.0, 0.06};
+  if (name == "turn") return {0.0, 0.0, 0.075};
+  switch (k / phase) {  // "sequence"
+    case 0:
+      return {0.034, 0.0, 0.0};
+    case 1:
+      return {0.03, 0.0, 0.075};
+    case 2:
+      return {0.0, 0.0045, 0.0};
+    case 3:
+      return {0.03, 0.0, -0.075};
+    default:
+      return {0.0, 0.0, 0.0};
+  }
 }
 
 /// Sets the standing posture under the first sample of a walk as the initial guess of `ik`.

@@ -4,9 +4,11 @@
 /// 2.113–2.114; §6.2.3; settings of Table 6.2). Ceres adapter: target walkgen::ceres (Debian:
 /// libceres-dev); the core never includes this header.
 ///
-/// The residual is evaluated by the same KinematicTree forward kinematics as the rest of walkgen,
-/// instantiated on ceres::Jet, so Ceres differentiates it automatically (no hand-written
-/// Jacobian). Unknowns: the floating base (root link) position in W, a rotation vector δ of the
+/// The residual is evaluated by the same KinematicTree forward kinematics as the rest of walkgen.
+/// Its Jacobian is analytic by default (the tree's frame and CoM Jacobians after one FK in
+/// double, CeresIkSettings::derivatives); IkDerivatives::automatic lets Ceres differentiate the
+/// FK instantiated on ceres::Jet instead, the reference the analytic one is tested against.
+/// Unknowns: the floating base (root link) position in W, a rotation vector δ of the
 /// base orientation relative to the warm start (R_base = R_start · exp([δ]×)), and the joint
 /// angles q, bounded by the joint limits. Residuals (21, each block times its weight):
 ///   - centre of mass − target (3) [m];
@@ -20,6 +22,9 @@
 /// reaches its sole. An orientation error is the vector part of the rotation from target to
 /// actual, vee(E − Eᵀ)/2 with E = R_targetᵀ R (sin of the angle times the axis): smooth, free of
 /// divisions, and the angle itself for the small errors the solver sees.
+///
+/// Ceres runs LM with DENSE_NORMAL_CHOLESKY on the 21 × 21 system, without its projected line
+/// search, and a warm solve starts with the trust region the previous one ended with.
 ///
 /// Allocation: ceres::Solve allocates on every call (its preprocessor, evaluator and summary);
 /// the solver is not allocation-free (DESIGN.md convention 6 is waived for this adapter).
@@ -46,6 +51,17 @@
 
 namespace walkgen {
 
+/// How Ceres gets the 21 × (6 + joints) Jacobian of the IK residual.
+enum class IkDerivatives {
+  /// From the tree's frame and centre-of-mass Jacobians (KinematicTree::frame_jacobian(),
+  /// center_of_mass_jacobian()) after one FK in double, chained through the orientation error
+  /// and the base rotation vector: a few µs per evaluation.
+  analytic,
+  /// Ceres' automatic differentiation over the same FK in ceres::Jet (AutoDiffCostFunction):
+  /// the reference the analytic Jacobian is tested against, about 60 µs per evaluation.
+  automatic,
+};
+
 /// Settings of CeresInverseKinematics: the keys of thesis Table 6.2, their mapping onto Ceres,
 /// the links it constrains, weights and the convergence test.
 struct CeresIkSettings {
@@ -61,8 +77,9 @@ struct CeresIkSettings {
   /// 1e-14 (a run usually ends on the gradient once the residual is round-off).
   double step_tol = 1e-12;
   /// `lambda`: LM damping λ of eq. 2.114. Ceres' LM solves (JᵀJ + D/μ) Δq = −Jᵀr with a trust
-  /// radius μ; initial_trust_region_radius = 1/lambda, then Ceres adapts μ each step. Smaller
-  /// lambda: bolder first steps.
+  /// radius μ; initial_trust_region_radius = 1/lambda for a cold solve, then Ceres adapts μ each
+  /// step; a warm solve starts from the μ the previous solve ended with (at least 1/lambda), so
+  /// it takes Gauss–Newton steps at once. Smaller lambda: bolder first steps.
   double lambda = 1e-2;
   /// `num_steps`: Ceres' max_num_iterations per run.
   int num_steps = 1000;
@@ -72,6 +89,10 @@ struct CeresIkSettings {
   /// `lf_body_point`, `rf_body_point`: the constrained point of each foot in its sole frame [m].
   Eigen::Vector3d lf_body_point = Eigen::Vector3d::Zero();
   Eigen::Vector3d rf_body_point = Eigen::Vector3d::Zero();
+
+  /// Jacobian of the residual: analytic (default) or Ceres' automatic differentiation. Both
+  /// give the same LM iterates up to round-off; analytic is about 20 times faster per solve.
+  IkDerivatives derivatives = IkDerivatives::analytic;
 
   std::string left_foot_link = "l_sole";   ///< sole frame of the left foot (z up when flat)
   std::string right_foot_link = "r_sole";  ///< sole frame of the right foot
@@ -185,6 +206,30 @@ Eigen::Matrix<T, 3, 1> rotation_residual(const Eigen::Matrix3d& target,
   return Eigen::Matrix<T, 3, 1>(E(2, 1) - E(1, 2), E(0, 2) - E(2, 0), E(1, 0) - E(0, 1)) * T(0.5);
 }
 
+/// [v]×, the matrix of the cross product v × ·.
+inline Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0.0, -v.z(), v.y(),  //
+      v.z(), 0.0, -v.x(),   //
+      -v.y(), v.x(), 0.0;
+  return S;
+}
+
+/// Left Jacobian of SO(3) at the rotation vector d: exp([d + ε]×) = exp([J_l ε]×) exp([d]×) to
+/// first order in ε. J_l = I + (1 − cos θ)/θ² [d]× + (θ − sin θ)/θ³ [d]×², θ = |d|; Taylor
+/// series for small θ.
+inline Eigen::Matrix3d so3_left_jacobian(const Eigen::Vector3d& d) {
+  const double t2 = d.squaredNorm();
+  double a = 0.5 - t2 / 24.0, b = 1.0 / 6.0 - t2 / 120.0;  // error below θ⁴/720 < 2e-15
+  if (t2 > 1e-6) {
+    const double t = std::sqrt(t2);
+    a = (1.0 - std::cos(t)) / t2;
+    b = (t - std::sin(t)) / (t2 * t);
+  }
+  const Eigen::Matrix3d S = skew(d);
+  return Eigen::Matrix3d::Identity() + a * S + b * S * S;
+}
+
 /// Angle of the rotation from a to b [rad], accurate for small angles.
 inline double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(Eigen::Quaterniond(a.transpose() * b).normalized()).angle();
@@ -199,8 +244,9 @@ inline double angle_difference(double x, double y) {
 
 /// Whole-body Levenberg–Marquardt IK over a KinematicTree (see the file comment).
 /// NumJoints: the tree's revolute joints at compile time (15 for walkgen's humanoid), or
-/// Eigen::Dynamic (Ceres' DynamicAutoDiffCostFunction, slower). Holds the current solution (the
-/// warm start of the next solve). Not copyable or movable: Ceres keeps pointers into it.
+/// Eigen::Dynamic (with automatic derivatives: Ceres' DynamicAutoDiffCostFunction, slower). Holds
+/// the current solution (the warm start of the next solve). Not copyable or movable: Ceres keeps
+/// pointers into it.
 template <int NumJoints = Eigen::Dynamic>
 class CeresInverseKinematics {
   static_assert(NumJoints == Eigen::Dynamic || NumJoints >= 1,
@@ -227,21 +273,24 @@ class CeresInverseKinematics {
     check_argument(NumJoints == Eigen::Dynamic || n == NumJoints,
                    "CeresInverseKinematics: joints of the tree", NumJoints, n,
                    "use CeresInverseKinematics<Eigen::Dynamic> or the tree's num_joints()");
-    auto owned = std::make_unique<Residual>(tree, settings);  // throws for unknown link names
-    residual_ = owned.get();
+    residual_ = std::make_unique<Residual>(tree, settings);  // throws for unknown link names
     lower_ = tree.lower_limits();
     upper_ = tree.upper_limits();
     x_.setZero(6 + n);
     ceres::CostFunction* cost = nullptr;
-    if constexpr (NumJoints == Eigen::Dynamic) {
-      auto* dynamic =
-          new ceres::DynamicAutoDiffCostFunction<Residual, kDynamicStride>(owned.release());
+    if (settings.derivatives == IkDerivatives::analytic) {
+      cost = new AnalyticCost(*residual_);
+    } else if constexpr (NumJoints == Eigen::Dynamic) {
+      auto* dynamic = new ceres::DynamicAutoDiffCostFunction<Residual, kDynamicStride>(
+          residual_.get(), ceres::DO_NOT_TAKE_OWNERSHIP);
       dynamic->AddParameterBlock(6 + n);
       dynamic->SetNumResiduals(kResiduals);
       cost = dynamic;
     } else {
-      cost = new ceres::AutoDiffCostFunction<Residual, kResiduals, kParameters>(owned.release());
+      cost = new ceres::AutoDiffCostFunction<Residual, kResiduals, kParameters>(
+          residual_.get(), ceres::DO_NOT_TAKE_OWNERSHIP);
     }
+    cost_ = cost;
     problem_.AddResidualBlock(cost, nullptr, x_.data());
     for (int i = 0; i < n; ++i) {
       if (std::isfinite(lower_[i])) problem_.SetParameterLowerBound(x_.data(), 6 + i, lower_[i]);
@@ -249,7 +298,7 @@ class CeresInverseKinematics {
     }
     options_.minimizer_type = ceres::TRUST_REGION;
     options_.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    options_.linear_solver_type = ceres::DENSE_QR;
+    options_.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     options_.max_num_iterations = settings.num_steps;
     options_.parameter_tolerance = settings.step_tol;
     options_.gradient_tolerance = settings.step_tol * 1e2;
@@ -259,6 +308,9 @@ class CeresInverseKinematics {
     // Non-monotonic steps let LM cross the narrow valleys near the joint bounds (round-trip
     // success 99.2 % -> 100 % on the humanoid) and halve the iterations.
     options_.use_nonmonotonic_steps = true;
+    // Steps that cross a joint bound are projected onto the bounds, without Ceres' projected line
+    // search (which evaluates the Jacobian a second time per iteration).
+    options_.max_num_line_search_step_size_iterations = 0;
     options_.logging_type = ceres::SILENT;
     options_.minimizer_progress_to_stdout = false;
     set_initial_guess(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
@@ -299,6 +351,10 @@ class CeresInverseKinematics {
     IkResult best;
     for (int run = 0; run < runs; ++run) {
       start_run(run);
+      // A warm solve starts with the trust region the previous solve ended with: near the last
+      // solution LM takes Gauss–Newton steps at once (3.4 instead of 7.8 iterations a sample).
+      options_.initial_trust_region_radius =
+          run == 0 && warm_ ? warm_radius_ : 1.0 / settings_.lambda;
       ceres::Solver::Summary summary;
       ceres::Solve(options_, &problem_, &summary);
       result.iterations += summary.num_successful_steps + summary.num_unsuccessful_steps;
@@ -312,11 +368,17 @@ class CeresInverseKinematics {
           best.status = IkStatus::converged;
           best.applied = true;
           warm_ = true;
+          warm_radius_ = std::max(
+              1.0 / settings_.lambda,
+              summary.iterations.empty() ? 0.0 : summary.iterations.back().trust_region_radius);
           break;
         }
       }
     }
-    if (best.status != IkStatus::converged) best.status = IkStatus::not_converged;
+    if (best.status != IkStatus::converged) {
+      best.status = IkStatus::not_converged;
+      warm_radius_ = 1.0 / settings_.lambda;
+    }
     best.iterations = result.iterations;
     best.runs = result.runs;
     return best;
@@ -327,6 +389,28 @@ class CeresInverseKinematics {
   const Eigen::VectorXd& q() const { return q_; }
   const Eigen::Vector3d& base_position_W() const { return base_position_; }
   const Eigen::Matrix3d& base_rotation_W() const { return base_rotation_; }
+
+  /// The weighted residual (21) and its Jacobian d r / d x (21 × (6 + joints)) for `target` at
+  /// the unknowns x = (base position in W, rotation vector δ of the base relative to
+  /// base_rotation_W(), q), computed as Ceres sees them with settings().derivatives. For tests
+  /// and diagnostics; the solution is not changed.
+  /// @throws walkgen::invalid_argument for an x of the wrong size or a non-finite target or x.
+  void residual_and_jacobian(const IkTarget& target, const Eigen::VectorXd& x,
+                             Eigen::VectorXd& residual, Eigen::MatrixXd& jacobian) {
+    const char* where = "CeresInverseKinematics::residual_and_jacobian";
+    check_argument(x.size() == 6 + num_joints(), where, 6 + num_joints(), x.size(),
+                   "base position, base rotation vector, then the joints");
+    check_argument(target.all_finite() && x.allFinite(), where, "a finite target and x",
+                   "NaN or inf");
+    residual_->target_ = target;
+    residual_->start_rotation_ = base_rotation_;
+    residual.resize(kResiduals);
+    Eigen::Matrix<double, kResiduals, Eigen::Dynamic, Eigen::RowMajor> J(kResiduals, x.size());
+    const double* parameters[] = {x.data()};
+    double* jacobians[] = {J.data()};
+    cost_->Evaluate(parameters, residual.data(), jacobians);
+    jacobian = J;
+  }
 
   int num_joints() const { return residual_->tree_.num_joints(); }
   const KinematicTree<double>& tree() const { return residual_->tree_; }
@@ -343,7 +427,9 @@ class CeresInverseKinematics {
           left_(tree_.link_index(s.left_foot_link)),
           right_(tree_.link_index(s.right_foot_link)),
           torso_(tree_.link_index(s.torso_link)),
-          s_(s) {}
+          s_(s),
+          frame_J_(6, tree_.num_velocities()),
+          com_J_(3, tree_.num_velocities()) {}
 
     /// AutoDiffCostFunction's signature (one parameter block).
     template <typename T>
@@ -419,14 +505,77 @@ class CeresInverseKinematics {
       return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     }
 
+    /// The residual Jacobian d r / d x, 21 × (6 + joints) row major as Ceres stores it, at the
+    /// x of the last evaluate() in double (ws_ holds its FK). The tree's Jacobians map the
+    /// generalised velocity v = (ṗ_W, ω_W, q̇) to point and angular velocities; x differs from v
+    /// in the base rotation only: ω_W = R_start J_l(δ) δ̇ (J_l: left Jacobian of SO(3)). An
+    /// orientation error r = vee(E − Eᵀ)/2, E = Tᵀ R, moves with Ṙ = [ω]× R by
+    /// ṙ = ½ (tr(E) I − E) Tᵀ ω.
+    void jacobian(const double* x, double* out) const {
+      using Matrix3 = Eigen::Matrix3d;
+      const int cols = tree_.num_velocities();
+      Eigen::Map<Eigen::Matrix<double, kResiduals, kParameters, Eigen::RowMajor>> J(out, kResiduals,
+                                                                                    cols);
+      const Matrix3 turn = start_rotation_ * detail::so3_left_jacobian(Eigen::Vector3d(x + 3));
+      // Rows `row`..+2 = weight · A · (J_v with its angular-velocity columns turned into δ).
+      auto put = [&](int row, double weight, const Matrix3& A, const auto& J_v) {
+        J.template middleRows<3>(row).noalias() = weight * A * J_v;
+        J.template block<3, 3>(row, 3) *= turn;
+      };
+      auto orientation = [&](const Eigen::Matrix3d& target, int link) {
+        const Matrix3 E = target.transpose() * ws_.rotation_W(link);
+        return Matrix3((0.5 * (E.trace() * Matrix3::Identity() - E)) * target.transpose());
+      };
+      const int root = 0;
+      tree_.center_of_mass_jacobian(ws_, com_J_);
+      com_J_.template middleCols<3>(3) -= detail::skew(ws_.rotation_W(root) * s_.com_body_point);
+      put(0, s_.com_weight, Matrix3::Identity(), com_J_);
+      int row = 3;
+      for (int side = 0; side < 2; ++side, row += 6) {
+        const int link = side == 0 ? left_ : right_;
+        const SoleTarget& sole = side == 0 ? target_.left_foot : target_.right_foot;
+        tree_.frame_jacobian(ws_, link, frame_J_, side == 0 ? s_.lf_body_point : s_.rf_body_point);
+        put(row, s_.foot_position_weight, Matrix3::Identity(), frame_J_.template topRows<3>());
+        put(row + 3, s_.foot_orientation_weight, orientation(flat(sole.yaw), link),
+            frame_J_.template bottomRows<3>());
+      }
+      frame_J_.setZero();  // the root's angular velocity is v's entries 3..5
+      frame_J_.template block<3, 3>(3, 3).setIdentity();
+      put(15, s_.base_orientation_weight, orientation(target_.base_rotation_W, root),
+          frame_J_.template bottomRows<3>());
+      tree_.frame_jacobian(ws_, torso_, frame_J_);
+      put(18, s_.torso_orientation_weight, orientation(target_.torso_rotation_W, torso_),
+          frame_J_.template bottomRows<3>());
+    }
+
     KinematicTree<double> tree_;
     KinematicTree<Jet> jet_tree_;
     mutable typename KinematicTree<double>::Workspace ws_;
     mutable typename KinematicTree<Jet>::Workspace jet_ws_;
     int left_, right_, torso_;
     CeresIkSettings s_;
+    mutable Eigen::Matrix<double, 6, kParameters> frame_J_;  ///< scratch of jacobian()
+    mutable Eigen::Matrix<double, 3, kParameters> com_J_;
     IkTarget target_;
     Eigen::Matrix3d start_rotation_ = Eigen::Matrix3d::Identity();  ///< R_start of the run
+  };
+
+  /// Ceres cost function of the analytic Jacobian: the residual in double plus
+  /// Residual::jacobian(), one parameter block of 6 + joints.
+  class AnalyticCost final : public ceres::CostFunction {
+   public:
+    explicit AnalyticCost(const Residual& f) : f_(f) {
+      set_num_residuals(kResiduals);
+      mutable_parameter_block_sizes()->push_back(f.tree_.num_velocities());
+    }
+    bool Evaluate(double const* const* x, double* r, double** jacobians) const override {
+      f_.evaluate(x[0], r, f_.tree_, f_.ws_);
+      if (jacobians != nullptr && jacobians[0] != nullptr) f_.jacobian(x[0], jacobians[0]);
+      return true;
+    }
+
+   private:
+    const Residual& f_;
   };
 
   /// Sets x_ to the start of run `run`. Run 0 starts from the current solution. Restarts move
@@ -512,14 +661,16 @@ class CeresInverseKinematics {
     q_ = x_.tail(num_joints());
   }
 
-  Residual* residual_ = nullptr;  // owned by the cost function, which problem_ owns
+  std::unique_ptr<Residual> residual_;  // before problem_: its cost function points into it
   CeresIkSettings settings_;
   ceres::Problem problem_;
+  ceres::CostFunction* cost_ = nullptr;  // owned by problem_
   ceres::Solver::Options options_;
   Eigen::VectorXd x_, lower_, upper_, q_, guess_q_;
   Eigen::Vector3d base_position_, guess_position_;
   Eigen::Matrix3d base_rotation_, guess_rotation_;
   bool warm_ = false;
+  double warm_radius_ = 1.0;  ///< initial trust region radius of the next warm solve
 };
 
 }  // namespace walkgen
