@@ -123,7 +123,8 @@ TEST(CeresInverseKinematics, RoundTripOfRandomReachableTargets) {
 /// scenario `name`: converges every time, smooth joint motion.
 void walk_and_check(const std::string& name, int ticks, int phase = 8) {
   const auto samples = walkgen_test::heicub_walk(
-      [&](int k) { return walkgen_test::heicub_scenario_command(name, k, phase); }, ticks);
+      [&](int k) { return walkgen_test::heicub_scenario_command(name, k, phase); }, ticks,
+      walkgen_test::heicub_obstacle(name));
   HumanoidIk ik(tree());
   walkgen_test::start_walk(ik, samples.front());
   const double dt = walkgen::heicub_settings().command_period;
@@ -175,6 +176,25 @@ TEST(CeresInverseKinematics, HeicubTurnOnTheSpotHasSmoothJoints) { walk_and_chec
 
 TEST(CeresInverseKinematics, HeicubCommandSequenceHasSmoothJoints) {
   walk_and_check("sequence", 40, 8);
+}
+
+// Obstacle avoidance at Heicub's scale (walkgen_test::heicub_obstacle): four gait cycles, the
+// footsteps keep radius + margin from the obstacle and the walk ends past it.
+TEST(CeresInverseKinematics, HeicubObstacleAvoidanceHasSmoothJoints) {
+  walk_and_check("obstacle", 64);
+  const auto obstacle = walkgen_test::heicub_obstacle("obstacle").front();
+  const auto samples = walkgen_test::heicub_walk(
+      [](int k) { return walkgen_test::heicub_scenario_command("obstacle", k, 8); }, 64,
+      {obstacle});
+  for (const auto& o : samples) {
+    if (!o.double_support) continue;  // both feet on the ground: where footsteps landed
+    for (const auto* foot : {&o.left, &o.right}) {
+      const auto p = foot->motion.pose();
+      EXPECT_GE(std::hypot(p.x - obstacle.x, p.y - obstacle.y),
+                obstacle.radius + obstacle.margin - 1e-9);
+    }
+  }
+  EXPECT_GT(samples.back().com_x[0], obstacle.x + obstacle.radius + obstacle.margin);
 }
 
 /// The analytic residual Jacobian equals Ceres' automatic one over the FK in Jets, with

@@ -54,11 +54,14 @@ void start_standing(Ik& ik, const Eigen::Vector3d& left_sole_W, double yaw = 0.0
 }
 
 /// A Heicub walk (thesis Table 6.1: walkgen::heicub_settings() unchanged, com_z = 0.45 m, which
-/// the humanoid's standing CoM matches) of `ticks` NMPC ticks, the command at tick k being
-/// command(k), interpolated at the command period.
+/// the humanoid's standing CoM matches, plus `obstacles`) of `ticks` NMPC ticks, the command at
+/// tick k being command(k), interpolated at the command period.
 template <typename Command>
-std::vector<walkgen::TrajectorySample<double>> heicub_walk(const Command& command, int ticks) {
-  const walkgen::WalkingSettings<double> s = walkgen::heicub_settings();
+std::vector<walkgen::TrajectorySample<double>> heicub_walk(
+    const Command& command, int ticks,
+    const std::vector<walkgen::CircleObstacle<double>>& obstacles = {}) {
+  walkgen::WalkingSettings<double> s = walkgen::heicub_settings();
+  s.obstacles = obstacles;
   walkgen::WalkingMpc<double, 16> mpc(s);
   walkgen::WalkingInterpolator<double> interp(s);
   std::vector<walkgen::TrajectorySample<double>> samples(
@@ -81,9 +84,10 @@ inline std::vector<walkgen::TrajectorySample<double>> heicub_walk(const Eigen::V
 /// The pattern generator's scenarios (tests/support/walking_scenarios.hpp) at Heicub's speeds,
 /// within heicub_settings().max_command = (0.034 m/s, 0.0045 m/s, 0.075 rad/s): the command
 /// (v_x, v_y, ω_z) of scenario `name` at tick k. "sequence" changes it every `phase` ticks:
-/// forward, curve left, sideways, curve right, stop.
+/// forward, curve left, sideways, curve right, stop. "obstacle" walks straight at the obstacle of
+/// heicub_obstacle().
 inline Eigen::Vector3d heicub_scenario_command(const std::string& name, int k, int phase) {
-  if (name == "straight") return {0.034, 0.0, 0.0};
+  if (name == "straight" || name == "obstacle") return {0.034, 0.0, 0.0};
   if (name == "sideways") return {0.0, 0.0045, 0.0};
   if (name == "curved") return {0.03, 0.0, 0.06};
   if (name == "turn") return {0.0, 0.0, 0.075};
@@ -99,6 +103,13 @@ inline Eigen::Vector3d heicub_scenario_command(const std::string& name, int k, i
     default:
       return {0.0, 0.0, 0.0};
   }
+}
+
+/// The obstacle scenario at Heicub's scale: a circle across the left foot's straight path 0.45 m
+/// ahead (radius 0.1 m, margin 0.05 m); the walk steps around it and past it within 64 ticks.
+inline std::vector<walkgen::CircleObstacle<double>> heicub_obstacle(const std::string& name) {
+  if (name != "obstacle") return {};
+  return {{0.45, 0.2, 0.1, 0.05}};
 }
 
 /// Sets the standing posture under the first sample of a walk as the initial guess of `ik`.
