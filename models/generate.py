@@ -32,6 +32,11 @@ MODEL_NAME = "walkgen_humanoid"
 FOOT_SIZE = (0.2, 0.1, 0.03)     # sole length x width [m] and sole-plate thickness
 FOOT_DISTANCE = 0.14             # lateral distance of the sole frames [m]
 ANKLE_HEIGHT = 0.06              # ankle joints above the sole [m]
+# Position servos: stiffness [N m/rad] of every joint and the joints' viscous damping [N m s/rad].
+# Stiff enough that the loaded stance leg tracks the IK to about 5 mrad (walking in MuJoCo:
+# 200 let the robot sag 0.1 rad at the ankle and fall sideways), damped near critically.
+KP = 2000.0
+JOINT_DAMPING = 10.0
 FT_SENSOR_HEIGHT = 0.03          # ankle force-torque sensor frame above the sole, d in eq. 2.11
 HIP_BELOW_ROOT = 0.06            # hip pitch/roll joints below the root frame [m]
 HIP_YAW_BELOW_HIP = 0.04         # hip yaw joint below the hip pitch/roll joints [m]
@@ -111,17 +116,17 @@ def leg(side):
     # (joint, parent, child, origin xyz, axis, limits of the left leg [rad], effort [N m], kp)
     joints = [
         joint(p + "hip_pitch", "root_link", p + "hip_1",
-              (0.0, s * FOOT_DISTANCE / 2, -HIP_BELOW_ROOT), "y", (-1.9, 0.6), 60.0, 200.0),
+              (0.0, s * FOOT_DISTANCE / 2, -HIP_BELOW_ROOT), "y", (-1.9, 0.6), 150.0, KP),
         joint(p + "hip_roll", p + "hip_1", p + "hip_2", (0.0, 0.0, 0.0), "x",
-              mirrored(-0.35, 1.2), 60.0, 200.0),
+              mirrored(-0.35, 1.2), 150.0, KP),
         joint(p + "hip_yaw", p + "hip_2", p + "upper_leg", (0.0, 0.0, -HIP_YAW_BELOW_HIP), "z",
-              mirrored(-1.0, 1.0), 40.0, 100.0),
+              mirrored(-1.0, 1.0), 100.0, KP),
         joint(p + "knee", p + "upper_leg", p + "lower_leg",
-              (0.0, 0.0, -(THIGH - HIP_YAW_BELOW_HIP)), "y", (0.0, 2.0), 60.0, 200.0),
+              (0.0, 0.0, -(THIGH - HIP_YAW_BELOW_HIP)), "y", (0.0, 2.0), 150.0, KP),
         joint(p + "ankle_pitch", p + "lower_leg", p + "ankle_1", (0.0, 0.0, -SHANK), "y",
-              (-0.8, 0.8), 40.0, 200.0),
+              (-0.8, 0.8), 150.0, KP),
         joint(p + "ankle_roll", p + "ankle_1", p + "foot", (0.0, 0.0, 0.0), "x",
-              mirrored(-0.4, 0.4), 30.0, 100.0),
+              mirrored(-0.4, 0.4), 100.0, KP),
     ]
     frames = [
         fixed(p + "sole_fixed", p + "foot", p + "sole", (0.0, 0.0, -ANKLE_HEIGHT)),
@@ -147,11 +152,10 @@ def robot():
     ]
     joints += [
         joint("torso_pitch", "root_link", "torso_1", (0.0, 0.0, TORSO_PITCH_ABOVE_ROOT), "y",
-              (-0.4, 1.0), 80.0, 300.0),
-        joint("torso_roll", "torso_1", "torso_2", (0.0, 0.0, 0.0), "x", (-0.5, 0.5), 80.0,
-              300.0),
+              (-0.4, 1.0), 150.0, KP),
+        joint("torso_roll", "torso_1", "torso_2", (0.0, 0.0, 0.0), "x", (-0.5, 0.5), 150.0, KP),
         joint("torso_yaw", "torso_2", "chest", (0.0, 0.0, TORSO_YAW_ABOVE_ROLL), "z",
-              (-0.9, 0.9), 40.0, 100.0),
+              (-0.9, 0.9), 100.0, KP),
     ]
     x, z = CAMERA_POSITION
     for name, y in (("left_camera", CAMERA_BASELINE / 2), ("right_camera", -CAMERA_BASELINE / 2)):
@@ -274,7 +278,7 @@ def mjcf(links, joints, frames):
         '    <numeric name="ft_sensor_height" data="%s"/>' % num(FT_SENSOR_HEIGHT),
         "  </custom>",
         "  <default>",
-        '    <joint limited="true" damping="1" armature="0.01"/>',
+        '    <joint limited="true" damping="%s" armature="0.01"/>' % num(JOINT_DAMPING),
         '    <geom contype="2" conaffinity="1" condim="3" friction="1 0.005 0.0001"/>',
         '    <position ctrllimited="true" forcelimited="true"/>',
         '    <site size="0.01" rgba="1 0 0 1"/>',

@@ -46,7 +46,7 @@
 #include <type_traits>
 
 #include "walkgen/core/exceptions.hpp"
-#include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 
 namespace walkgen {
@@ -129,72 +129,6 @@ inline void validate(const CeresIkSettings& s) {
   check_positive("CeresIkSettings.position_tolerance", s.position_tolerance);
   check_positive("CeresIkSettings.orientation_tolerance", s.orientation_tolerance);
 }
-
-/// A flat sole: its point (lf/rf_body_point) at position_W [m], turned by yaw [rad] about z.
-struct SoleTarget {
-  Eigen::Vector3d position_W = Eigen::Vector3d::Zero();
-  double yaw = 0.0;
-};
-
-/// What the whole body should do: CoM, both soles, and the held orientations.
-struct IkTarget {
-  Eigen::Vector3d com_W = Eigen::Vector3d::Zero();  ///< [m]
-  SoleTarget left_foot, right_foot;
-  Eigen::Matrix3d base_rotation_W = Eigen::Matrix3d::Identity();   ///< root link (pelvis)
-  Eigen::Matrix3d torso_rotation_W = Eigen::Matrix3d::Identity();  ///< settings.torso_link
-
-  /// Upright pelvis and torso turned by `yaw` [rad], the walking posture.
-  void hold_upright(double yaw) {
-    base_rotation_W = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    torso_rotation_W = base_rotation_W;
-  }
-
-  bool all_finite() const {
-    return com_W.allFinite() && left_foot.position_W.allFinite() &&
-           right_foot.position_W.allFinite() && std::isfinite(left_foot.yaw) &&
-           std::isfinite(right_foot.yaw) && base_rotation_W.allFinite() &&
-           torso_rotation_W.allFinite();
-  }
-};
-
-/// The IK target of a sample of the walking pattern (interpolation/trajectory.hpp): CoM
-/// (x, y, com_z), the feet at (x, y, height, yaw), pelvis and torso upright turned by the CoM
-/// yaw. The soles are at the ground height 0 of the generator.
-inline IkTarget ik_target(const TrajectorySample<double>& s) {
-  IkTarget t;
-  t.com_W = Eigen::Vector3d(s.com_x[0], s.com_y[0], s.com_z);
-  auto sole = [](const SwingSample<double>& f) {
-    return SoleTarget{Eigen::Vector3d(f.motion.x.position, f.motion.y.position, f.z.position),
-                      f.motion.q.position};
-  };
-  t.left_foot = sole(s.left);
-  t.right_foot = sole(s.right);
-  t.hold_upright(s.com_q[0]);
-  return t;
-}
-
-/// Outcome of a solve.
-enum class IkStatus {
-  converged,      ///< every error within the tolerances; the solution was updated
-  not_converged,  ///< some error above its tolerance after all runs; previous solution kept
-  invalid_input,  ///< a non-finite target; nothing was solved, previous solution kept
-};
-
-/// Result of CeresInverseKinematics::solve(): status, work and the unweighted errors of the
-/// final iterate (of the best run; infinity when nothing was solved).
-struct IkResult {
-  IkStatus status = IkStatus::invalid_input;
-  bool applied = false;  ///< the solution was updated (only when converged)
-  int iterations = 0;    ///< LM iterations (successful + unsuccessful steps), all runs
-  int runs = 0;          ///< Ceres runs (up to n_init on a cold solve)
-  double com_error = std::numeric_limits<double>::infinity();            ///< |c − c*| [m]
-  double foot_position_error = std::numeric_limits<double>::infinity();  ///< max of feet [m]
-  double foot_yaw_error = std::numeric_limits<double>::infinity();       ///< max of feet [rad]
-  double foot_tilt_error = std::numeric_limits<double>::infinity();      ///< sole normal vs z [rad]
-  double base_orientation_error = std::numeric_limits<double>::infinity();   ///< [rad]
-  double torso_orientation_error = std::numeric_limits<double>::infinity();  ///< [rad]
-  double cost = std::numeric_limits<double>::infinity();  ///< Ceres' ½|weighted residual|²
-};
 
 namespace detail {
 

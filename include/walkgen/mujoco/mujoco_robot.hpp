@@ -19,7 +19,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -42,6 +45,23 @@ inline std::string humanoid_mjcf_path() {
 #endif
 }
 
+/// Shapes of SceneObject.
+enum class SceneShape : std::uint8_t { box, cylinder, sphere };
+
+/// A static object added to the model's world (a target, a chair, a wall): one geom in a body of
+/// its own, standing on the floor unless position.z says otherwise.
+struct SceneObject {
+  std::string name;  ///< MuJoCo body and geom name (letters, digits, '_' or '-'), unique
+  SceneShape shape = SceneShape::box;
+  /// Centre of the object's base on the floor [m]: the geom is lifted by half its height.
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double yaw = 0.0;  ///< [rad] about z
+  /// box: length (x), width (y), height [m]; cylinder: radius, unused, height; sphere: radius.
+  Eigen::Vector3d size = Eigen::Vector3d(0.1, 0.1, 0.1);
+  Eigen::Vector3d rgb = Eigen::Vector3d(0.8, 0.2, 0.1);  ///< colour, each in [0, 1]
+  bool collides = true;  ///< false: visible only (the robot walks through it)
+};
+
 /// How a MujocoRobot maps our names onto the model. The defaults describe walkgen's humanoid.
 struct MujocoRobotSettings {
   /// MJCF file; empty: humanoid_mjcf_path().
@@ -62,6 +82,11 @@ struct MujocoRobotSettings {
   std::string keyframe = "stand";
   /// Fallen when the base is below this fraction of its initial height.
   double fall_height_ratio = 0.8;
+  /// Static objects added to the world of the model (the model file itself is not changed).
+  std::vector<SceneObject> objects;
+  /// Largest image of MujocoRobot::render_view() [px] (sizes the offscreen buffer).
+  int view_width = 640;
+  int view_height = 480;
 };
 
 /// A simulated robot in MuJoCo. Not copyable (owns the model, data and GL context).
@@ -140,6 +165,37 @@ class MujocoRobot final : public Robot {
     return images_;
   }
 
+  /// Renders the scene from a free camera looking at `lookat` (world frame, [m]) from
+  /// `distance` [m], azimuth and elevation [deg] (MuJoCo's convention: azimuth 0 looks along +x,
+  /// elevation < 0 looks down), RGB and depth, at most view_width × view_height of the settings.
+  /// @return false (and nothing rendered) when rendering is unavailable; render_cameras()'
+  ///   message says why.
+  /// @throws walkgen::invalid_argument for a size beyond the settings' view size or a
+  ///   non-finite view.
+  bool render_view(const Eigen::Vector3d& lookat, double distance, double azimuth, double elevation,
+                   int width, int height, CameraImage& image) {
+    check_argument(width >= 1 && height >= 1 && width <= settings_.view_width &&
+                       height <= settings_.view_height,
+                   "MujocoRobot::render_view: size",
+                   "within MujocoRobotSettings view_width x view_height = " +
+                       std::to_string(settings_.view_width) + " x " +
+                       std::to_string(settings_.view_height),
+                   std::to_string(width) + " x " + std::to_string(height));
+    check_argument(lookat.allFinite() && std::isfinite(distance) && distance > 0.0 &&
+                       std::isfinite(azimuth) && std::isfinite(elevation),
+                   "MujocoRobot::render_view", "a finite view with distance > 0", "NaN or inf");
+    if (!renderer_ready()) return false;
+    mjvCamera camera;
+    mjv_defaultFreeCamera(model_.get(), &camera);
+    for (int i = 0; i < 3; ++i) camera.lookat[i] = lookat[i];
+    camera.distance = distance;
+    camera.azimuth = azimuth;
+    camera.elevation = elevation;
+    render_into(camera, width, height, image);
+    image.fovy = model_->vis.global.fovy * EIGEN_PI / 180.0;
+    return true;
+  }
+
   void reset() override {
     mj_resetData(model_.get(), data_.get());
     if (keyframe_ >= 0) {
@@ -178,7 +234,11 @@ class MujocoRobot final : public Robot {
     check_argument(std::ifstream(path).good(), "MujocoRobot: model_path", "a readable MJCF file",
                    "'" + path + "' (cannot be opened)");
     char error[1000] = "";
-    model_.reset(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
+    if (settings_.objects.empty()) {
+      model_.reset(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
+    } else {
+      model_.reset(load_with_objects(path, error, sizeof(error)));
+    }
     std::string reason(error);  // MuJoCo's message spans lines: make it one
     std::replace(reason.begin(), reason.end(), '\n', ' ');
     while (!reason.empty() && reason.back() == ' ') reason.pop_back();
@@ -187,6 +247,64 @@ class MujocoRobot final : public Robot {
     data_.reset(mj_makeData(model_.get()));
     check_argument(data_ != nullptr, "MujocoRobot", "memory for the simulation data of",
                    "'" + path + "'");
+  }
+
+  /// The MJCF of `path` with settings_.objects inserted at the end of its worldbody, loaded
+  /// from memory (MuJoCo's virtual file system: asset files of the model, if any, must then be
+  /// found from the working directory; walkgen's humanoid has none).
+  mjModel* load_with_objects(const std::string& path, char* error, int error_size) const {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string xml = text.str();
+    const std::size_t end = xml.rfind("</worldbody>");
+    check_argument(end != std::string::npos, "MujocoRobot: model_path",
+                   "an MJCF with a <worldbody> to add objects to", "'" + path + "'");
+    std::ostringstream bodies;
+    bodies.precision(9);
+    for (const SceneObject& o : settings_.objects) {
+      bool name_ok = !o.name.empty();
+      for (char c : o.name)
+        name_ok = name_ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+      check_argument(name_ok, "MujocoRobotSettings.objects: name", "letters, digits, '_' or '-'",
+                     "'" + o.name + "'");
+      const std::string where = "MujocoRobotSettings.objects: '" + o.name + "'";
+      check_argument(o.position.allFinite() && std::isfinite(o.yaw) && o.size.allFinite() &&
+                         (o.size.array() > 0.0).all(),
+                     where.c_str(), "a finite pose and sizes > 0", "NaN, inf or a size <= 0");
+      check_argument((o.rgb.array() >= 0.0).all() && (o.rgb.array() <= 1.0).all(),
+                     (where + " rgb").c_str(), "values in [0, 1]", "out of range");
+      const double half_height = o.shape == SceneShape::sphere ? o.size.x() : o.size.z() / 2.0;
+      bodies << "    <body name=\"" << o.name << "\" pos=\"" << o.position.x() << ' '
+             << o.position.y() << ' ' << o.position.z() + half_height << "\" euler=\"0 0 " << o.yaw
+             << "\">\n      <geom name=\"" << o.name << "\" ";
+      switch (o.shape) {
+        case SceneShape::box:
+          bodies << "type=\"box\" size=\"" << o.size.x() / 2.0 << ' ' << o.size.y() / 2.0 << ' '
+                 << half_height << '"';
+          break;
+        case SceneShape::cylinder:
+          bodies << "type=\"cylinder\" size=\"" << o.size.x() << ' ' << half_height << '"';
+          break;
+        case SceneShape::sphere:
+          bodies << "type=\"sphere\" size=\"" << o.size.x() << '"';
+          break;
+      }
+      bodies << " rgba=\"" << o.rgb.x() << ' ' << o.rgb.y() << ' ' << o.rgb.z() << " 1\"";
+      if (!o.collides) bodies << " contype=\"0\" conaffinity=\"0\"";
+      bodies << "/>\n    </body>\n";
+    }
+    xml.insert(end, bodies.str());
+    // The VFS is large (MuJoCo 2.2: fixed arrays of file names): on the heap, once.
+    auto vfs = std::make_unique<mjVFS>();
+    mj_defaultVFS(vfs.get());
+    const std::string name = "walkgen_scene.xml";
+    mj_makeEmptyFileVFS(vfs.get(), name.c_str(), int(xml.size()));
+    const int index = mj_findFileVFS(vfs.get(), name.c_str());
+    std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+    mjModel* m = mj_loadXML(name.c_str(), vfs.get(), error, error_size);
+    mj_deleteVFS(vfs.get());
+    return m;
   }
 
   /// The sensor `name` of `type` and `dim` values, or -1 (and `name` added to `missing`).
@@ -311,8 +429,10 @@ class MujocoRobot final : public Robot {
     if (gl_ == nullptr) {
       gl_ = std::make_unique<detail::EglContext>();
       if (gl_->make_current()) {
-        model_->vis.global.offwidth = std::max(model_->vis.global.offwidth, info_.image_width);
-        model_->vis.global.offheight = std::max(model_->vis.global.offheight, info_.image_height);
+        model_->vis.global.offwidth =
+            std::max({model_->vis.global.offwidth, info_.image_width, settings_.view_width});
+        model_->vis.global.offheight =
+            std::max({model_->vis.global.offheight, info_.image_height, settings_.view_height});
         // No multisampling: a resolved multisample depth buffer holds one sample per pixel, off the
         // pixel's centre (a third of a pixel, 1.6 % of the depth at 10 m on the floor).
         model_->vis.quality.offsamples = 0;
@@ -341,13 +461,25 @@ class MujocoRobot final : public Robot {
   }
 
   void render_camera(int camera_id, CameraImage& image) {
-    const int w = info_.image_width;
-    const int h = info_.image_height;
     mjvCamera camera;
     mjv_defaultCamera(&camera);
     camera.type = mjCAMERA_FIXED;
     camera.fixedcamid = camera_id;
-    mjv_updateScene(model_.get(), data_.get(), &vis_option_, nullptr, &camera, mjCAT_ALL, &scene_);
+    render_into(camera, info_.image_width, info_.image_height, image);
+    image.fovy = model_->cam_fovy[camera_id] * EIGEN_PI / 180.0;
+    // MuJoCo's camera looks along its -z with y up; ours looks along x with z up.
+    const Eigen::Isometry3d mujoco_camera =
+        pose(data_->cam_xpos + 3 * camera_id, data_->cam_xmat + 9 * camera_id);
+    Eigen::Matrix3d C_from_mujoco;
+    C_from_mujoco << 0, 0, -1, -1, 0, 0, 0, 1, 0;  // rows: our x, y, z in MuJoCo's camera frame
+    image.pose_W_C = mujoco_camera;
+    image.pose_W_C.linear() = mujoco_camera.linear() * C_from_mujoco.transpose();
+  }
+
+  /// Renders `camera` into image (w × h, RGB and depth in metres, top row first).
+  void render_into(const mjvCamera& camera, int w, int h, CameraImage& image) {
+    mjv_updateScene(model_.get(), data_.get(), &vis_option_, nullptr,
+                    const_cast<mjvCamera*>(&camera), mjCAT_ALL, &scene_);
     const mjrRect viewport{0, 0, w, h};
     mjr_render(viewport, &scene_, &render_context_);
     rgb_flipped_.resize(static_cast<std::size_t>(w) * h * 3);
@@ -361,7 +493,6 @@ class MujocoRobot final : public Robot {
     // The clipping planes MuJoCo's frustum used (the model's znear, zfar times its extent).
     image.near_clip = scene_.camera[0].frustum_near;
     image.far_clip = scene_.camera[0].frustum_far;
-    image.fovy = model_->cam_fovy[camera_id] * EIGEN_PI / 180.0;
     const double n = image.near_clip;
     const double f = image.far_clip;
     for (int row = 0; row < h; ++row) {  // OpenGL's rows start at the bottom
@@ -373,13 +504,6 @@ class MujocoRobot final : public Robot {
         image.depth[dst + col] = static_cast<float>(n * f / (f - z * (f - n)));
       }
     }
-    // MuJoCo's camera looks along its -z with y up; ours looks along x with z up.
-    const Eigen::Isometry3d mujoco_camera =
-        pose(data_->cam_xpos + 3 * camera_id, data_->cam_xmat + 9 * camera_id);
-    Eigen::Matrix3d C_from_mujoco;
-    C_from_mujoco << 0, 0, -1, -1, 0, 0, 0, 1, 0;  // rows: our x, y, z in MuJoCo's camera frame
-    image.pose_W_C = mujoco_camera;
-    image.pose_W_C.linear() = mujoco_camera.linear() * C_from_mujoco.transpose();
   }
 
   MujocoRobotSettings settings_;

@@ -14,10 +14,13 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
@@ -189,6 +192,71 @@ inline MeasuredZmp measured_zmp(const std::array<ForceTorqueReading, 2>& ft, dou
     result.valid = result.zmp_W.allFinite();
   }
   return result;
+}
+
+/// How far a measured ZMP lies inside the support polygon: the convex hull of the soles in
+/// contact (MeasuredZmp::in_contact), each a foot_length × foot_width rectangle centred
+/// sensor_height below its sensor origin along the sensor's z, with the sensor's x forward.
+/// Horizontal plane of the world frame.
+///
+/// @return the distance [m] from the ZMP to the nearest edge when inside (≥ 0), the largest
+///   violated edge distance, negated, when outside (< 0; for a convex polygon at most the
+///   Euclidean distance); NaN when zmp is not valid.
+/// @throws walkgen::invalid_argument when a size is not finite and > 0.
+inline double support_polygon_margin(const MeasuredZmp& zmp,
+                                     const std::array<ForceTorqueReading, 2>& ft,
+                                     double sensor_height, double foot_length, double foot_width) {
+  check_positive("support_polygon_margin: sensor_height", sensor_height, "a finite height > 0 m");
+  check_positive("support_polygon_margin: foot_length", foot_length, "a finite length > 0 m");
+  check_positive("support_polygon_margin: foot_width", foot_width, "a finite width > 0 m");
+  if (!zmp.valid) return std::numeric_limits<double>::quiet_NaN();
+  std::array<Eigen::Vector2d, 8> corners;
+  int n = 0;
+  for (int i = 0; i < 2; ++i) {
+    if (!zmp.in_contact[std::size_t(i)]) continue;
+    const Eigen::Isometry3d& T = ft[std::size_t(i)].pose_W_S;
+    for (double sx : {0.5, -0.5}) {
+      for (double sy : {0.5, -0.5}) {
+        const Eigen::Vector3d p =
+            T * Eigen::Vector3d(sx * foot_length, sy * foot_width, -sensor_height);
+        corners[std::size_t(n++)] = p.head<2>();
+      }
+    }
+  }
+  // Convex hull (Andrew's monotone chain) of at most 8 corners, counter-clockwise.
+  for (int i = 1; i < n; ++i) {  // insertion sort by (x, y): at most 8 corners
+    for (int j = i; j > 0; --j) {
+      const Eigen::Vector2d& a = corners[std::size_t(j - 1)];
+      const Eigen::Vector2d& b = corners[std::size_t(j)];
+      if (a.x() < b.x() || (a.x() == b.x() && a.y() <= b.y())) break;
+      std::swap(corners[std::size_t(j - 1)], corners[std::size_t(j)]);
+    }
+  }
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::array<Eigen::Vector2d, 16> hull;
+  int h = 0;
+  for (int i = 0; i < n; ++i) {  // lower hull
+    while (h >= 2 && cross(hull[std::size_t(h - 2)], hull[std::size_t(h - 1)],
+                           corners[std::size_t(i)]) <= 0.0)
+      --h;
+    hull[std::size_t(h++)] = corners[std::size_t(i)];
+  }
+  for (int i = n - 2, lower = h + 1; i >= 0; --i) {  // upper hull
+    while (h >= lower && cross(hull[std::size_t(h - 2)], hull[std::size_t(h - 1)],
+                               corners[std::size_t(i)]) <= 0.0)
+      --h;
+    hull[std::size_t(h++)] = corners[std::size_t(i)];
+  }
+  const Eigen::Vector2d p = zmp.zmp_W.head<2>();
+  double margin = std::numeric_limits<double>::infinity();
+  for (int e = 0; e + 1 < h; ++e) {  // hull[h-1] == hull[0]
+    const Eigen::Vector2d edge = hull[std::size_t(e + 1)] - hull[std::size_t(e)];
+    const Eigen::Vector2d inward(-edge.y(), edge.x());  // left of a counter-clockwise edge
+    margin = std::min(margin, inward.normalized().dot(p - hull[std::size_t(e)]));
+  }
+  return margin;
 }
 
 }  // namespace walkgen

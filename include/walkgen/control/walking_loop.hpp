@@ -1,0 +1,357 @@
+#pragma once
+/// @file
+/// The closed walking loop of thesis figure 6.1 (§6.1, §6.3): velocity command → NMPC →
+/// interpolation at the command period → whole-body inverse kinematics → joint targets →
+/// robot, with the centre of mass fed back from forward kinematics of the measured joints every
+/// t_feedback, and the zero moment point measured by the ankle force-torque sensors
+/// (eq. 2.11–2.17) logged beside the generator's.
+///
+/// Core (Eigen only): the robot is any walkgen::Robot (e.g. walkgen::MujocoRobot) and the inverse
+/// kinematics any solver with CeresInverseKinematics' interface (walkgen::ceres provides that
+/// one):
+///
+///     walkgen::MujocoRobot robot;
+///     walkgen::CeresInverseKinematics<15> ik(tree);
+///     walkgen::WalkingLoop<16, walkgen::CeresInverseKinematics<15>> loop(
+///         walkgen::heicub_settings(), robot, ik);
+///     loop.start();                                  // state and IK guess from the measured robot
+///     loop.set_command({0.03, 0.0, 0.0});
+///     while (loop.tick().status == walkgen::LoopStatus::ok) {
+///       for (const auto& s : loop.samples()) { /* s.plan.zmp_x vs s.zmp.zmp_W.x(), ... */ }
+///     }
+///
+/// The world frame is the generator's: at start() the robot is placed so that its support sole
+/// (WalkingSettings::support_foot) is at the settings' foot pose, flat on the ground. A real
+/// robot measures no base pose, and neither does the loop: the measured CoM is forward
+/// kinematics from the current support sole, assumed where the plan put it (as the thesis does).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/kinematics/ik_target.hpp"
+#include "walkgen/kinematics/kinematic_tree.hpp"
+#include "walkgen/mpc/walking_mpc.hpp"
+#include "walkgen/robot_io/robot.hpp"
+
+namespace walkgen {
+
+/// What a tick of the loop ended with. Anything but ok or qp_failed stops the walk.
+enum class LoopStatus : std::uint8_t {
+  ok,          ///< the tick's samples were executed
+  qp_failed,   ///< the NMPC kept its previous (shifted) plan, which was executed; see MpcStatus
+  fallen,      ///< the robot reports a fall (RobotStatus::fallen); the loop stops
+  diverged,    ///< the simulation diverged (RobotStatus::diverged); the loop stops
+  not_started  ///< tick() before start(), or after the robot stopped
+};
+
+inline const char* to_string(LoopStatus s) {
+  switch (s) {
+    case LoopStatus::ok:
+      return "ok";
+    case LoopStatus::qp_failed:
+      return "qp_failed";
+    case LoopStatus::fallen:
+      return "fallen";
+    case LoopStatus::diverged:
+      return "diverged";
+    default:
+      return "not_started";
+  }
+}
+
+/// Settings of the loop itself; the generator's are WalkingSettings (t, command_period,
+/// t_feedback), the solver's its own.
+struct WalkingLoopSettings {
+  /// Feed the measured CoM back to the NMPC every WalkingSettings::t_feedback (§6.3).
+  bool com_feedback = true;
+  /// Fraction of the measured − planned CoM position fed back, in (0, 1]. Velocity and
+  /// acceleration stay the plan's: differentiated joint measurements are too noisy to help.
+  double feedback_gain = 1.0;
+  /// Sole links of the tree (left, right): where the IK puts the feet and the feedback starts.
+  std::string left_sole_link = "l_sole";
+  std::string right_sole_link = "r_sole";
+  /// Frames of the ankle force-torque sensors in the tree (left, right).
+  std::string left_ft_sensor_link = "l_foot_ft_sensor";
+  std::string right_ft_sensor_link = "r_foot_ft_sensor";
+  /// [s] start(): time to move the CoM from where it stands over the support foot.
+  double transfer_time = 2.0;
+};
+
+/// One command period of the loop: what was planned and what was measured after it.
+struct LoopSample {
+  TrajectorySample<double> plan;  ///< the interpolated pattern (CoM, ZMP, feet), world frame
+  /// From the ankle sensors after the sample's physics (eq. 2.11–2.17), with the sensor poses
+  /// of forward kinematics from the planned support sole: the frame of `plan`, as a robot
+  /// without a base pose measurement sees it. Compare it with plan.zmp_x, plan.zmp_y.
+  MeasuredZmp zmp;
+  /// The raw sensor readings, with the sensor poses the robot reports (a simulator: the true
+  /// world poses, where zmp_W = measured_zmp(ft, d) lies in the true support polygon).
+  std::array<ForceTorqueReading, 2> ft;
+  /// CoM by forward kinematics of the measured joints from the planned support sole [m].
+  Eigen::Vector3d com_measured_W = Eigen::Vector3d::Zero();
+  double base_height = 0.0;  ///< [m] as the robot reports it
+  IkStatus ik = IkStatus::converged;
+};
+
+/// Summary of one tick (one NMPC period t).
+struct LoopTick {
+  LoopStatus status = LoopStatus::not_started;
+  MpcStatus mpc = MpcStatus::solved;
+  int ik_failures = 0;  ///< samples whose IK did not converge (previous joints sent again)
+  bool fed_back = false;
+  /// Measured − planned CoM position at the feedback of this tick [m] (zero without one).
+  Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
+  std::string message;  ///< the robot's message when it stopped
+};
+
+/// The loop of figure 6.1 around a Robot and an inverse kinematics `Ik` with
+/// `tree()`, `set_initial_guess(p_W, R_W, q)`, `solve(IkTarget) -> IkResult` and `q()`
+/// (CeresInverseKinematics). Robot and solver are borrowed and must outlive the loop.
+template <int N, typename Ik, int FootEdges = 4, int HullEdges = 5>
+class WalkingLoop {
+ public:
+  using Mpc = WalkingMpc<double, N, FootEdges, HullEdges>;
+
+  /// @throws walkgen::invalid_argument when the settings are invalid, the robot's joints are not
+  ///   all in the solver's tree, the sole links are unknown, or t_feedback is not a positive
+  ///   multiple of t.
+  WalkingLoop(const WalkingSettings<double>& settings, Robot& robot, Ik& ik,
+              WalkingLoopSettings loop = WalkingLoopSettings())
+      : loop_(std::move(loop)),
+        robot_(robot),
+        ik_(ik),
+        tree_(ik.tree()),
+        ws_(tree_.make_workspace()),
+        mpc_(settings),
+        interp_(settings) {
+    check_argument(loop_.feedback_gain > 0.0 && loop_.feedback_gain <= 1.0,
+                   "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]",
+                   loop_.feedback_gain);
+    check_argument(std::isfinite(loop_.transfer_time) && loop_.transfer_time >= 0.0,
+                   "WalkingLoopSettings.transfer_time", "a duration >= 0 [s]", loop_.transfer_time);
+    const double ratio = settings.t_feedback / settings.t;
+    check_argument(
+        std::isfinite(ratio) && ratio >= 1.0 - 1e-9 && std::abs(ratio - std::round(ratio)) < 1e-6,
+        "WalkingLoop: t_feedback", "a whole multiple of t = " + std::to_string(settings.t),
+        settings.t_feedback);
+    feedback_every_ = int(std::lround(ratio));
+    sole_[0] = tree_.link_index(loop_.left_sole_link);
+    sole_[1] = tree_.link_index(loop_.right_sole_link);
+    sensor_[0] = tree_.link_index(loop_.left_ft_sensor_link);
+    sensor_[1] = tree_.link_index(loop_.right_ft_sensor_link);
+    const auto& names = robot_.info().joint_names;
+    check_argument(int(names.size()) == tree_.num_joints(), "WalkingLoop: robot joints",
+                   "as many as the IK tree's " + std::to_string(tree_.num_joints()),
+                   int(names.size()), "every joint of the tree must be commanded");
+    to_tree_.resize(names.size());
+    for (std::size_t j = 0; j < names.size(); ++j) to_tree_[j] = tree_.joint_index(names[j]);
+    q_tree_.resize(tree_.num_joints());
+    q_robot_.resize(Eigen::Index(names.size()));
+    samples_.resize(std::size_t(interp_.samples_per_tick()));
+    plan_.resize(samples_.size());
+  }
+
+  WalkingLoop(const WalkingLoop&) = delete;
+  WalkingLoop& operator=(const WalkingLoop&) = delete;
+
+  /// Begins a walk from the robot's current measurement. The generator keeps the ZMP in the
+  /// support sole from its first sample, so a robot standing on both feet first moves its CoM
+  /// over the support foot, to the settings' initial CoM (com_x, com_y, com_z), along a
+  /// minimum-jerk path of WalkingLoopSettings::transfer_time with both feet where they are
+  /// measured. Then the generator's state is set from the measurement (CoM from forward
+  /// kinematics, the support sole at the settings' foot pose, the other foot where it is,
+  /// standing still).
+  /// @return ok, or fallen / diverged when the robot stopped during the transfer.
+  const LoopTick& start() {
+    tick_ = LoopTick();
+    started_ = false;
+    const WalkingSettings<double>& s = mpc_.settings();
+    const Foot support = s.support_foot;
+    const FootPose<double> support_pose{s.foot_x, s.foot_y, s.foot_q};
+    to_tree_order(robot_.output().q);
+    place_on_sole(support, support_pose);
+    ik_.set_initial_guess(base_p_W_, base_R_W_, q_tree_);
+    IkTarget target;
+    const FootPose<double> feet[2] = {sole_pose(Foot::left), sole_pose(Foot::right)};
+    target.left_foot = {Eigen::Vector3d(feet[0].x, feet[0].y, 0.0), feet[0].q};
+    target.right_foot = {Eigen::Vector3d(feet[1].x, feet[1].y, 0.0), feet[1].q};
+    target.hold_upright((feet[0].q + feet[1].q) / 2.0);
+    const Eigen::Vector3d c0 = tree_.center_of_mass(ws_);
+    const Eigen::Vector3d c1(s.com_x[0], s.com_y[0], s.com_z);
+    const double dt = interp_.command_period();
+    const int n = std::max(1, int(std::lround(loop_.transfer_time / dt)));
+    for (int k = 1; k <= n; ++k) {
+      const double r = double(k) / double(n);
+      const double blend = r * r * r * (10.0 - 15.0 * r + 6.0 * r * r);  // minimum jerk
+      target.com_W = c0 + blend * (c1 - c0);
+      ik_.solve(target);
+      if (!send_and_step(dt)) return tick_;
+    }
+    to_tree_order(robot_.output().q);
+    place_on_sole(support, support_pose);
+    const Eigen::Vector3d c = tree_.center_of_mass(ws_);
+    typename Mpc::State st;
+    st.com_x << c.x(), 0.0, 0.0;
+    st.com_y << c.y(), 0.0, 0.0;
+    st.support_foot = support;
+    st.support = support_pose;
+    st.swing_origin = sole_pose(other(support));
+    st.swing = FootMotion<double>::at_rest(st.swing_origin);
+    mpc_.reset(st);
+    samples_.resize(plan_.size());
+    ticks_ = 0;
+    started_ = true;
+    tick_.status = LoopStatus::ok;
+    return tick_;
+  }
+
+  /// The velocity command (v_x, v_y [m/s], ω_z [rad/s]) in the robot frame, for the next ticks.
+  CommandStatus set_command(const Eigen::Vector3d& command) { return mpc_.set_command(command); }
+
+  /// One NMPC period: feedback (when due), solve, interpolate, and per command period IK,
+  /// joint targets and a robot step. samples() holds what happened.
+  const LoopTick& tick() {
+    tick_ = LoopTick();
+    if (!started_) {
+      tick_.message = "WalkingLoop::tick: call start() first (or the robot stopped)";
+      return tick_;
+    }
+    if (loop_.com_feedback && ticks_ > 0 && ticks_ % feedback_every_ == 0) feed_back();
+    tick_.mpc = mpc_.solve().status;
+    interp_.interpolate(mpc_, plan_.data());
+    const double dt = interp_.command_period();
+    for (std::size_t k = 0; k < plan_.size(); ++k) {
+      LoopSample& out = samples_[k];
+      out.plan = plan_[k];
+      out.ik = ik_.solve(ik_target(plan_[k])).status;
+      tick_.ik_failures += out.ik != IkStatus::converged;  // the previous joints stay
+      const bool running = send_and_step(dt);
+      const RobotOutput& m = robot_.output();
+      out.ft = m.ft;
+      out.base_height = m.base_height;
+      to_tree_order(m.q);
+      place_on_sole(plan_[k].support_foot, planned_support(plan_[k]));
+      out.com_measured_W = tree_.center_of_mass(ws_);
+      for (int f = 0; f < 2; ++f) {  // the same wrenches, at the sensor poses of this FK
+        ft_fk_[std::size_t(f)] = m.ft[std::size_t(f)];
+        ft_fk_[std::size_t(f)].pose_W_S.linear() = ws_.rotation_W(sensor_[f]);
+        ft_fk_[std::size_t(f)].pose_W_S.translation() = ws_.position_W(sensor_[f]);
+      }
+      out.zmp = measured_zmp(ft_fk_, robot_.info().ft_sensor_height);
+      if (!running) {
+        samples_.resize(k + 1);  // what happened up to the stop (no reallocation: shrinks)
+        return tick_;
+      }
+    }
+    mpc_.advance();
+    ++ticks_;
+    tick_.status = tick_.mpc == MpcStatus::solved ? LoopStatus::ok : LoopStatus::qp_failed;
+    return tick_;
+  }
+
+  /// The command periods of the last tick (fewer when the robot stopped during it).
+  const std::vector<LoopSample>& samples() const { return samples_; }
+  const LoopTick& last_tick() const { return tick_; }
+
+  /// The generator, e.g. for obstacles (mpc().set_obstacles()) or its plan.
+  Mpc& mpc() { return mpc_; }
+  const Mpc& mpc() const { return mpc_; }
+  const WalkingLoopSettings& settings() const { return loop_; }
+  long ticks() const { return ticks_; }
+
+ private:
+  static Foot other(Foot f) { return f == Foot::left ? Foot::right : Foot::left; }
+
+  void to_tree_order(const Eigen::VectorXd& q_robot) {
+    for (std::size_t j = 0; j < to_tree_.size(); ++j) {
+      q_tree_[to_tree_[j]] = q_robot[Eigen::Index(j)];
+    }
+  }
+
+  /// Sends the IK's joints to the robot and steps it by dt; false (status and message set,
+  /// the loop stopped) when the robot stopped.
+  bool send_and_step(double dt) {
+    for (std::size_t j = 0; j < to_tree_.size(); ++j) {
+      q_robot_[Eigen::Index(j)] = ik_.q()[to_tree_[j]];
+    }
+    robot_.set_joint_targets(q_robot_);
+    const RobotStatus rs = robot_.step(dt);
+    if (rs == RobotStatus::ok) return true;
+    tick_.status = rs == RobotStatus::fallen ? LoopStatus::fallen : LoopStatus::diverged;
+    tick_.message = robot_.output().message;
+    started_ = false;
+    return false;
+  }
+
+  /// The support sole's pose in a sample of the plan.
+  static FootPose<double> planned_support(const TrajectorySample<double>& s) {
+    const auto& f = s.foot(s.support_foot);
+    return {f.motion.x.position, f.motion.y.position, f.motion.q.position};
+  }
+
+  /// Forward kinematics of q_tree_ with the base placed so that sole `foot` lies flat at `pose`
+  /// (the sole's own tilt relative to the base is kept: a flat sole gives the true base).
+  void place_on_sole(Foot foot, const FootPose<double>& pose) {
+    const int sole = sole_[foot == Foot::left ? 0 : 1];
+    tree_.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q_tree_, ws_);
+    const Eigen::Matrix3d R_base_sole = ws_.rotation_W(sole);
+    const Eigen::Vector3d p_base_sole = ws_.position_W(sole);
+    // Yaw of the sole in the base frame, so that the sole's yaw in W becomes pose.q.
+    const double sole_yaw = std::atan2(R_base_sole(1, 0), R_base_sole(0, 0));
+    base_R_W_ = Eigen::AngleAxisd(pose.q - sole_yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    base_p_W_ = Eigen::Vector3d(pose.x, pose.y, 0.0) - base_R_W_ * p_base_sole;
+    tree_.forward_kinematics(base_p_W_, base_R_W_, q_tree_, ws_);
+  }
+
+  /// The pose (x, y, yaw) of sole `foot` after place_on_sole().
+  FootPose<double> sole_pose(Foot foot) const {
+    const int sole = sole_[foot == Foot::left ? 0 : 1];
+    const Eigen::Vector3d& p = ws_.position_W(sole);
+    const Eigen::Matrix3d& R = ws_.rotation_W(sole);
+    return {p.x(), p.y(), std::atan2(R(1, 0), R(0, 0))};
+  }
+
+  /// §6.3: the CoM of the measured joints, from the support sole where the plan has it.
+  void feed_back() {
+    const RobotOutput& m = robot_.output();
+    to_tree_order(m.q);
+    typename Mpc::State st = mpc_.state();
+    place_on_sole(st.support_foot, st.support);
+    const Eigen::Vector3d c = tree_.center_of_mass(ws_);
+    tick_.com_error = Eigen::Vector2d(c.x() - st.com_x[0], c.y() - st.com_y[0]);
+    st.com_x[0] += loop_.feedback_gain * tick_.com_error.x();
+    st.com_y[0] += loop_.feedback_gain * tick_.com_error.y();
+    mpc_.set_state(st);  // throws on non-finite measurements
+    tick_.fed_back = true;
+  }
+
+  WalkingLoopSettings loop_;
+  Robot& robot_;
+  Ik& ik_;
+  const KinematicTree<double>& tree_;
+  typename KinematicTree<double>::Workspace ws_;
+  Mpc mpc_;
+  WalkingInterpolator<double> interp_;
+  int feedback_every_ = 1;
+  int sole_[2] = {0, 0};
+  int sensor_[2] = {0, 0};
+  std::array<ForceTorqueReading, 2> ft_fk_;
+  std::vector<Eigen::Index> to_tree_;
+  Eigen::VectorXd q_tree_, q_robot_;
+  Eigen::Vector3d base_p_W_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d base_R_W_ = Eigen::Matrix3d::Identity();
+  std::vector<TrajectorySample<double>> plan_;
+  std::vector<LoopSample> samples_;
+  LoopTick tick_;
+  long ticks_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace walkgen
