@@ -276,4 +276,55 @@ TEST(MujocoRobot, RendersBothChestCamerasWithDepth) {
   EXPECT_NE(images.left.rgb, images.right.rgb);
 }
 
+TEST(MujocoRobot, AddsSceneObjectsToTheWorldAndRendersAFreeView) {
+  MujocoRobotSettings settings;
+  walkgen::SceneObject box;
+  box.name = "chair";
+  box.position = Eigen::Vector3d(1.0, 0.5, 0.0);
+  box.size = Eigen::Vector3d(0.2, 0.3, 0.4);
+  box.rgb = Eigen::Vector3d(0.9, 0.1, 0.1);
+  walkgen::SceneObject ghost;
+  ghost.name = "target";
+  ghost.shape = walkgen::SceneShape::cylinder;
+  ghost.position = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  ghost.size = Eigen::Vector3d(0.05, 0.05, 0.35);
+  ghost.collides = false;
+  settings.objects = {box, ghost};
+  MujocoRobot robot(settings);
+  const mjModel* m = robot.model();
+  const int chair = mj_name2id(m, mjOBJ_GEOM, "chair");
+  const int target = mj_name2id(m, mjOBJ_GEOM, "target");
+  ASSERT_GE(chair, 0);
+  ASSERT_GE(target, 0);
+  EXPECT_EQ(m->geom_type[chair], mjGEOM_BOX);
+  EXPECT_NEAR(m->geom_size[3 * chair + 0], 0.1, 1e-12);  // half sizes
+  EXPECT_NEAR(m->geom_size[3 * chair + 2], 0.2, 1e-12);
+  EXPECT_EQ(m->geom_type[target], mjGEOM_CYLINDER);
+  EXPECT_EQ(m->geom_contype[target], 0);
+  EXPECT_EQ(m->geom_conaffinity[target], 0);
+  ASSERT_EQ(robot.step(0.05), RobotStatus::ok);
+  const double* p = robot.data()->geom_xpos + 3 * chair;
+  EXPECT_NEAR(p[0], 1.0, 1e-12);
+  EXPECT_NEAR(p[1], 0.5, 1e-12);
+  EXPECT_NEAR(p[2], 0.2, 1e-12);                          // standing on the floor
+  EXPECT_NEAR(robot.output().base_height, 0.5062, 0.01);  // the keyframe still fits
+
+  walkgen::CameraImage view;
+  ASSERT_TRUE(robot.render_view({1.0, 0.5, 0.2}, 1.5, 180.0, -20.0, 160, 120, view))
+      << robot.render_cameras().message;
+  ASSERT_EQ(view.rgb.size(), 160u * 120u * 3u);
+  const std::size_t centre = (60u * 160u + 80u) * 3u;  // looking at the red box
+  EXPECT_GT(int(view.rgb[centre]), 2 * int(view.rgb[centre + 1]));
+  EXPECT_NEAR(view.depth[60u * 160u + 80u], 1.5 - 0.1, 0.05);  // its face, 0.1 m before the centre
+  EXPECT_THROW(robot.render_view({0, 0, 0}, 1.0, 0.0, 0.0, 4000, 10, view),
+               walkgen::invalid_argument);
+
+  settings.objects = {box};
+  settings.objects[0].name = "bad name";
+  EXPECT_NE(thrown_message(settings).find("'bad name'"), std::string::npos);
+  settings.objects[0].name = "ok";
+  settings.objects[0].size.x() = -1.0;
+  EXPECT_NE(thrown_message(settings).find("'ok'"), std::string::npos);
+}
+
 }  // namespace

@@ -77,4 +77,52 @@ TEST(RobotStatus, NamesEveryValue) {
   EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::diverged), "diverged");
 }
 
+// The support polygon of soles 0.2 x 0.1 m below sensors at d = 0.03 m, worked by hand.
+TEST(SupportPolygonMargin, IsTheDistanceToTheNearestEdgeOfTheSolesInContact) {
+  const double d = 0.03, L = 0.2, W = 0.1;
+  std::array<ForceTorqueReading, 2> ft{{reading({0, 0, 100}, {0, 0, 0}, {0, 0.07, d}, 0.0),
+                                        reading({0, 0, 100}, {0, 0, 0}, {0, -0.07, d}, 0.0)}};
+  walkgen::MeasuredZmp zmp;
+  zmp.valid = true;
+  zmp.in_contact = {{true, false}};  // left sole only: x in [-0.1, 0.1], y in [0.02, 0.12]
+  zmp.zmp_W = Eigen::Vector3d(0.05, 0.07, 0.0);
+  EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.05, 1e-12);
+  zmp.zmp_W = Eigen::Vector3d(0.0, 0.0, 0.0);  // 0.02 below its inner edge
+  EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), -0.02, 1e-12);
+  zmp.in_contact = {{true, true}};  // both: the hull x in [-0.1, 0.1], y in [-0.12, 0.12]
+  EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.1, 1e-12);
+  zmp.zmp_W = Eigen::Vector3d(0.0, 0.115, 0.0);
+  EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.005, 1e-12);
+  // The right foot 0.1 m ahead: the hull's diagonal edge runs from (0.2, -0.02), the right
+  // sole's front-left corner, to (0.1, 0.12), the left sole's front-left one.
+  ft[1] = reading({0, 0, 100}, {0, 0, 0}, {0.1, -0.07, d}, 0.0);
+  const Eigen::Vector2d a(0.2, -0.02), b(0.1, 0.12);
+  const Eigen::Vector2d e = (b - a).normalized();
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.15, 0.0), Eigen::Vector2d(0.19, 0.02)}) {
+    zmp.zmp_W = Eigen::Vector3d(p.x(), p.y(), 0.0);
+    const double left_of_edge = e.x() * (p - a).y() - e.y() * (p - a).x();  // > 0 inside
+    EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), left_of_edge, 1e-12);
+  }
+  zmp.zmp_W = Eigen::Vector3d(0.15, 0.0, 0.0);
+  EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.005 / std::sqrt(0.0296), 1e-12);
+  zmp.zmp_W = Eigen::Vector3d(0.19, 0.02, 0.0);
+  EXPECT_LT(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.0);
+  // A sole turned 90 degrees: 0.1 m long in x, 0.2 m in y.
+  ft[0] = reading({0, 0, 100}, {0, 0, 0}, {0, 0, d}, EIGEN_PI / 2);
+  zmp.in_contact = {{true, false}};
+  zmp.zmp_W = Eigen::Vector3d(0.03, 0.0, 0.0);
+  EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.02, 1e-12);
+}
+
+TEST(SupportPolygonMargin, NoContactIsNanAndBadSizesThrow) {
+  const std::array<ForceTorqueReading, 2> ft{};
+  walkgen::MeasuredZmp none;  // not valid
+  EXPECT_TRUE(std::isnan(walkgen::support_polygon_margin(none, ft, 0.03, 0.2, 0.1)));
+  EXPECT_THROW(walkgen::support_polygon_margin(none, ft, 0.0, 0.2, 0.1), walkgen::invalid_argument);
+  EXPECT_THROW(walkgen::support_polygon_margin(none, ft, 0.03, -0.2, 0.1),
+               walkgen::invalid_argument);
+  EXPECT_THROW(walkgen::support_polygon_margin(none, ft, 0.03, 0.2, std::nan("")),
+               walkgen::invalid_argument);
+}
+
 }  // namespace

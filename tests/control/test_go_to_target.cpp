@@ -1,0 +1,92 @@
+// walkgen::GoToTarget, the scripted user of the simulated tasks: commands within the limits,
+// turning toward the target, stopping, passing obstacles on a kept side, bad input.
+#include "walkgen/control/go_to_target.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using walkgen::GoToTarget;
+using walkgen::PlanarPose;
+
+const Eigen::Vector3d kMax(0.034, 0.0045, 0.075);  // Heicub's max_command
+
+TEST(GoToTarget, WalksStraightAtATargetAheadAndStopsWithinTheStopDistance) {
+  GoToTarget steer({2.0, 0.0}, kMax);
+  const auto far = steer(PlanarPose{0.0, 0.0, 0.0});
+  EXPECT_FALSE(far.reached);
+  EXPECT_NEAR(far.command.x(), 0.95 * kMax.x(), 1e-12);  // full speed (command_fraction 0.95)
+  EXPECT_NEAR(far.command.y(), 0.0, 1e-12);
+  EXPECT_NEAR(far.command.z(), 0.0, 1e-12);
+  EXPECT_NEAR(far.distance, 2.0, 1e-12);
+  // Within slow_down_distance (0.3) of the stop distance (0.2): slower, at least half speed.
+  const auto near = steer(PlanarPose{2.0 - 0.35, 0.0, 0.0});
+  EXPECT_NEAR(near.command.x(), 0.95 * kMax.x() * 0.5, 1e-12);
+  const auto there = steer(PlanarPose{1.85, 0.05, 0.3});
+  EXPECT_TRUE(there.reached);
+  EXPECT_EQ(there.command, Eigen::Vector3d::Zero());
+}
+
+TEST(GoToTarget, TurnsInPlaceTowardATargetBehindAndOnTheShorterSide) {
+  GoToTarget steer({-1.5, 0.3}, kMax);
+  const auto c = steer(PlanarPose{0.0, 0.0, 0.0});
+  EXPECT_EQ(c.command.x(), 0.0);  // heading error ~2.9 rad > turn_in_place_angle
+  EXPECT_NEAR(c.command.z(), 0.95 * kMax.z(), 1e-12);  // left: the target is at +168 degrees
+  GoToTarget right({-1.5, -0.3}, kMax);
+  EXPECT_NEAR(right(PlanarPose{0.0, 0.0, 0.0}).command.z(), -0.95 * kMax.z(), 1e-12);
+  // A small heading error: walking and turning, ω = gain * error.
+  GoToTarget ahead({1.0, 0.1}, kMax);
+  const auto a = ahead(PlanarPose{0.0, 0.0, 0.0});
+  EXPECT_NEAR(a.command.z(), std::min(std::atan2(0.1, 1.0), 0.95 * kMax.z()), 1e-12);
+  EXPECT_GT(a.command.x(), 0.0);
+}
+
+TEST(GoToTarget, AimsAtATangentOfABlockingObstacleAndKeepsItsSide) {
+  // The chair of the obstacle task: centre (1.0, 0.05), radius 0.15, margin 0.12.
+  const walkgen::CircleObstacle<double> chair{1.0, 0.05, 0.15, 0.12};
+  GoToTarget steer({2.0, 0.0}, kMax, {chair});
+  const auto c = steer(PlanarPose{0.3, 0.0, 0.0});
+  const double r = 0.15 + 0.12 + 0.1;  // + clearance
+  // The aim lies on the tangent: its direction from p makes asin(r / |c - p|) with the centre's.
+  const Eigen::Vector2d p(0.3, 0.0), centre(1.0, 0.05);
+  const Eigen::Vector2d to_aim = c.aim - p, to_centre = centre - p;
+  const double angle = std::acos(to_aim.normalized().dot(to_centre.normalized()));
+  EXPECT_NEAR(angle, std::asin(r / to_centre.norm()), 1e-9);
+  EXPECT_LT(c.aim.y(), 0.0);  // the centre is left of the way: pass on its right
+  EXPECT_LT(c.command.z(), 0.0);
+  // Swaying to the other side of the line does not change the side once chosen.
+  const auto sway = steer(PlanarPose{0.3, 0.12, 0.05});
+  EXPECT_LT(sway.aim.y(), 0.12);
+  EXPECT_LT(sway.command.z(), 0.0);
+  // Past the obstacle: straight to the target again.
+  const auto past = steer(PlanarPose{1.3, -0.3, 0.0});
+  EXPECT_NEAR((past.aim - Eigen::Vector2d(2.0, 0.0)).norm(), 0.0, 1e-12);
+}
+
+TEST(GoToTarget, CommandsStayWithinTheLimits) {
+  GoToTarget steer({0.5, 3.0}, kMax, {{0.2, 1.0, 0.2, 0.1}});
+  for (double yaw = -3.0; yaw <= 3.0; yaw += 0.25) {
+    for (double x = -1.0; x <= 1.0; x += 0.5) {
+      const auto c = steer(PlanarPose{x, 0.0, yaw});
+      EXPECT_LE(std::abs(c.command.x()), kMax.x());
+      EXPECT_GE(c.command.x(), 0.0);
+      EXPECT_LE(std::abs(c.command.y()), kMax.y());
+      EXPECT_LE(std::abs(c.command.z()), kMax.z());
+    }
+  }
+}
+
+TEST(GoToTarget, BadInputThrows) {
+  EXPECT_THROW(GoToTarget({std::nan(""), 0.0}, kMax), walkgen::invalid_argument);
+  EXPECT_THROW(GoToTarget({1.0, 0.0}, Eigen::Vector3d(-1.0, 0.0, 0.0)), walkgen::invalid_argument);
+  EXPECT_THROW(GoToTarget({1.0, 0.0}, kMax, {{0.5, 0.0, -0.1, 0.0}}), walkgen::invalid_argument);
+  walkgen::GoToTargetSettings s;
+  s.command_fraction = 0.0;
+  EXPECT_THROW(GoToTarget({1.0, 0.0}, kMax, {}, s), walkgen::invalid_argument);
+  GoToTarget ok({1.0, 0.0}, kMax);
+  EXPECT_THROW(ok(PlanarPose{0.0, std::nan(""), 0.0}), walkgen::invalid_argument);
+}
+
+}  // namespace
