@@ -7,8 +7,8 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
   libtinyxml2-dev libmujoco-dev libceres-dev liborocos-kdl-dev
-  libegl-dev libegl-mesa0 libgl1-mesa-dri zlib1g-dev
-  clang-format python3-numpy python3-matplotlib
+  libegl-dev libegl-mesa0 libgl1-mesa-dri zlib1g-dev libopencv-dev libopencv-contrib-dev
+  ffmpeg tmux clang-format python3-numpy python3-matplotlib
 )
 
 missing=()

@@ -1,0 +1,85 @@
+// The whole closed loop of thesis figure 6.1 with walkgen's humanoid in MuJoCo, without
+// rendering: one NMPC tick (t = 0.4 s simulated: solve, interpolation, 40 IK solves, 200 physics
+// steps of 2 ms, CoM feedback, measured ZMP) per iteration, walking forward and turning at
+// Heicub's speeds. The counter real_time_factor is simulated seconds per wall-clock second
+// (goal ≥ 10); side by side, the parts: the physics alone for the same 0.4 s (the robot standing
+// on its position servos) and the NMPC + IK without physics.
+//   build/release/benchmarks/bench_simulation --benchmark_repetitions=5 \
+//       --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include "support/simulated_tasks.hpp"
+
+namespace {
+
+const walkgen::KinematicTree<double>& tree() {
+  static const walkgen::KinematicTree<double> t = walkgen_test::humanoid_tree();
+  return t;
+}
+
+void report(benchmark::State& state, double simulated_per_iteration) {
+  state.counters["real_time_factor"] = benchmark::Counter(
+      simulated_per_iteration * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// NMPC + interpolation + IK + MuJoCo, per tick (0.4 s simulated).
+void BM_ClosedLoopTick(benchmark::State& state) {
+  walkgen::MujocoRobot robot;
+  walkgen_test::HumanoidIk ik(tree());
+  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  walkgen_test::SimLoop loop(settings, robot, ik);
+  if (loop.start().status != walkgen::LoopStatus::ok) state.SkipWithError("start failed");
+  loop.set_command({0.03, 0.0, 0.05});
+  long ticks = 0;
+  for (auto _ : state) {
+    if (loop.tick().status != walkgen::LoopStatus::ok) {
+      state.SkipWithError("the robot stopped");
+      break;
+    }
+    if (++ticks % 1500 == 0) {  // 10 minutes walked: start again, untimed
+      state.PauseTiming();
+      robot.reset();
+      loop.start();
+      state.ResumeTiming();
+    }
+  }
+  report(state, settings.t);
+}
+BENCHMARK(BM_ClosedLoopTick)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// MuJoCo alone: 0.4 s of physics with fixed servo targets (the standing robot).
+void BM_PhysicsOnly(benchmark::State& state) {
+  walkgen::MujocoRobot robot;
+  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  for (auto _ : state) {
+    for (int k = 0; k < 40; ++k) robot.step(settings.command_period);
+    benchmark::DoNotOptimize(robot.output().q.data());
+  }
+  report(state, settings.t);
+}
+BENCHMARK(BM_PhysicsOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The controller alone: one NMPC tick and the 40 IK solves of its samples, no physics.
+void BM_ControllerOnly(benchmark::State& state) {
+  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  walkgen::WalkingMpc<double, 16> mpc(settings);
+  walkgen::WalkingInterpolator<double> interp(settings);
+  std::vector<walkgen::TrajectorySample<double>> samples(std::size_t(interp.samples_per_tick()));
+  walkgen_test::HumanoidIk ik(tree());
+  mpc.set_command({0.03, 0.0, 0.05});
+  mpc.solve();
+  interp.interpolate(mpc, samples.data());
+  walkgen_test::start_walk(ik, samples.front());
+  for (auto _ : state) {
+    mpc.solve();
+    interp.interpolate(mpc, samples.data());
+    for (const auto& s : samples) benchmark::DoNotOptimize(ik.solve(walkgen::ik_target(s)));
+    mpc.advance();
+  }
+  report(state, settings.t);
+}
+BENCHMARK(BM_ControllerOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

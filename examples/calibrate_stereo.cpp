@@ -1,0 +1,159 @@
+// Stereo calibration of a folder of chessboard pairs (thesis §3.2, §10.1, Tables 10.1–10.2): the
+// command-line tool. Pairs are the files left<S>.<ext> and right<S>.<ext> of the folder with the
+// same suffix <S> (ext: jpg, jpeg, png, bmp, tif, tiff), in name order.
+//
+//   calibrate_stereo FOLDER [--board 9x6] [--square 0.025] [--out stereo_calibration.yml]
+//                    [--skip-missing] [--rectified PNG]
+//
+// Prints each pair's re-projection errors, the per-camera and stereo RMS, the mean epipolar
+// error, the intrinsics, the baseline and the rectified projections, and writes the calibration
+// as YAML (walkgen::save_stereo_calibration; walkgen::load_stereo_calibration reads it back).
+// --board is the count of inner corners (columns x rows), --square the square size in metres,
+// --skip-missing leaves out pairs where a board is not found instead of stopping, --rectified
+// writes the first pair raw (top) and rectified (bottom) with horizontal lines (figure 10.3;
+// docs/img/depth_rectified.png is a copy).
+// Exit code 0, or 1 with the reason on stderr (bad arguments, unreadable images, no board).
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+#include <walkgen/opencv/stereo_calibration.hpp>
+
+namespace {
+
+int usage(const char* message) {
+  std::fprintf(stderr,
+               "calibrate_stereo: %s\n"
+               "usage: calibrate_stereo FOLDER [--board 9x6] [--square 0.025] [--out FILE] "
+               "[--skip-missing] [--rectified PNG]\n",
+               message);
+  return 1;
+}
+
+void print_matrix(const char* name, const cv::Mat& m) {
+  std::printf("%s =", name);
+  for (int r = 0; r < m.rows; ++r) {
+    std::printf(r == 0 ? " [" : "\n%*s  ", static_cast<int>(std::strlen(name)) + 1, "");
+    for (int c = 0; c < m.cols; ++c) std::printf(" %12.5g", m.at<double>(r, c));
+  }
+  std::printf(" ]\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return usage("no FOLDER given");
+  const std::filesystem::path folder = argv[1];
+  walkgen::CalibrationSettings settings;
+  std::string out = "stereo_calibration.yml";
+  std::string rectified_png;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--skip-missing") {
+      settings.skip_views_without_board = true;
+    } else if (i + 1 < argc && arg == "--board") {
+      if (std::sscanf(argv[++i], "%dx%d", &settings.board.columns, &settings.board.rows) != 2) {
+        return usage("--board expects COLUMNSxROWS of inner corners, e.g. 9x6");
+      }
+    } else if (i + 1 < argc && arg == "--square") {
+      settings.board.square_size = std::atof(argv[++i]);
+    } else if (i + 1 < argc && arg == "--out") {
+      out = argv[++i];
+    } else if (i + 1 < argc && arg == "--rectified") {
+      rectified_png = argv[++i];
+    } else {
+      return usage(("unknown or incomplete argument '" + arg + "'").c_str());
+    }
+  }
+  if (!std::filesystem::is_directory(folder)) {
+    return usage(("'" + folder.string() + "' is not a folder").c_str());
+  }
+
+  // left<S>.<ext> / right<S>.<ext> pairs.
+  std::map<std::string, std::string> lefts, rights;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    std::string ext = entry.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".jpg" && ext != ".jpeg" && ext != ".png" && ext != ".bmp" && ext != ".tif" &&
+        ext != ".tiff") {
+      continue;
+    }
+    const std::string stem = entry.path().stem().string();
+    if (stem.rfind("left", 0) == 0) lefts[stem.substr(4)] = entry.path().string();
+    if (stem.rfind("right", 0) == 0) rights[stem.substr(5)] = entry.path().string();
+  }
+  std::vector<std::string> left_files, right_files, suffixes;
+  for (const auto& [suffix, path] : lefts) {
+    const auto r = rights.find(suffix);
+    if (r == rights.end()) {
+      std::fprintf(stderr, "calibrate_stereo: %s has no right partner, left out\n", path.c_str());
+      continue;
+    }
+    left_files.push_back(path);
+    right_files.push_back(r->second);
+    suffixes.push_back(suffix);
+  }
+  std::printf("calibrate_stereo: %zu pairs in %s, board %dx%d inner corners, squares %.4g m\n",
+              left_files.size(), folder.string().c_str(), settings.board.columns,
+              settings.board.rows, settings.board.square_size);
+
+  walkgen::StereoCalibration c;
+  try {
+    c = walkgen::calibrate_stereo_files(left_files, right_files, settings);
+    walkgen::save_stereo_calibration(c, out);
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "calibrate_stereo: %s\n", e.what());
+    return 1;
+  }
+
+  std::printf("\npair      left RMS [px]  right RMS [px]\n");
+  for (std::size_t v = 0; v < c.views_used.size(); ++v) {
+    std::printf("%-8s  %13.3f  %14.3f\n",
+                suffixes[static_cast<std::size_t>(c.views_used[v])].c_str(), c.left.view_rms[v],
+                c.right.view_rms[v]);
+  }
+  std::printf("\n%zu of %zu pairs used\n", c.views_used.size(), left_files.size());
+  std::printf("re-projection RMS: left %.4f px, right %.4f px, stereo %.4f px\n", c.left.rms,
+              c.right.rms, c.rms);
+  std::printf("mean epipolar error: %.4f px per corner (%.4f px left + right)\n",
+              c.mean_epipolar_error, 2.0 * c.mean_epipolar_error);
+  std::printf("baseline |T| = %.4f m\n\n", cv::norm(c.translation));
+  print_matrix("K1", c.left.camera_matrix);
+  print_matrix("D1", c.left.distortion);
+  print_matrix("K2", c.right.camera_matrix);
+  print_matrix("D2", c.right.distortion);
+  print_matrix("R", c.rotation);
+  print_matrix("T", c.translation);
+  print_matrix("R1", c.rectification_left);
+  print_matrix("P1", c.projection_left);
+  print_matrix("R2", c.rectification_right);
+  print_matrix("P2", c.projection_right);
+  std::printf("\nwrote %s\n", out.c_str());
+
+  if (!rectified_png.empty()) {  // figure 10.3: the first pair, raw above, rectified below
+    const std::size_t first = static_cast<std::size_t>(c.views_used.front());
+    const cv::Mat l = walkgen::read_image(left_files[first], cv::IMREAD_COLOR);
+    const cv::Mat r = walkgen::read_image(right_files[first], cv::IMREAD_COLOR);
+    cv::Mat rl, rr, raw, rectified, picture;
+    walkgen::StereoRectifier(c).rectify(l, r, rl, rr);
+    cv::hconcat(l, r, raw);
+    cv::hconcat(rl, rr, rectified);
+    for (int y = 20; y < raw.rows; y += 40) {
+      cv::line(raw, {0, y}, {raw.cols, y}, cv::Scalar(255, 128, 0), 1);
+      cv::line(rectified, {0, y}, {rectified.cols, y}, cv::Scalar(0, 200, 0), 1);
+    }
+    cv::vconcat(raw, rectified, picture);
+    cv::resize(picture, picture, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    if (!cv::imwrite(rectified_png, picture)) {
+      std::fprintf(stderr, "calibrate_stereo: cannot write %s\n", rectified_png.c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", rectified_png.c_str());
+  }
+  return 0;
+}

@@ -1,0 +1,289 @@
+// Keyboard teleoperation of the simulated robot in the terminal (thesis §8, appendix B.3.1): the
+// keys change the velocity command (v_x, v_y, ω_z) within the NMPC's limits, the closed loop of
+// figure 6.1 walks the humanoid in MuJoCo at real time (or faster), the screen shows command and
+// state, and every NMPC tick is recorded with its command and timestamps (for behavioural
+// cloning).
+//
+//   teleop [--speed S] [--record FILE] [--max-time T] [--summary FILE]
+//     --speed S     simulated seconds per wall-clock second (default 1: real time)
+//     --record FILE CSV: wall_time, sim_time, v_x, v_y, omega, key (default teleop_commands.csv)
+//     --max-time T  stop after T simulated seconds (default: until q)
+//     --summary FILE  a few key=value lines at the end (distance walked, status, rows)
+//
+// Keys: Up/w faster, Down/s slower (v_x ± 0.005 m/s), Left/a turn left, Right/d turn right
+// (ω ± 0.015 rad/s), z/c sideways left/right (v_y ± 0.0015 m/s), space stop, q quit.
+#include <poll.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "support/simulated_tasks.hpp"
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+void on_signal(int) { g_stop = 1; }
+
+/// Raw, non-echoing terminal input while alive (when stdin is a terminal).
+class RawTerminal {
+ public:
+  RawTerminal() {
+    if (isatty(STDIN_FILENO) == 0 || tcgetattr(STDIN_FILENO, &saved_) != 0) return;
+    termios raw = saved_;
+    raw.c_lflag &= ~tcflag_t(ICANON | ECHO);
+    raw.c_cc[VMIN] = 0;
+    raw.c_cc[VTIME] = 0;
+    active_ = tcsetattr(STDIN_FILENO, TCSANOW, &raw) == 0;
+  }
+  ~RawTerminal() {
+    if (active_) tcsetattr(STDIN_FILENO, TCSANOW, &saved_);
+  }
+  RawTerminal(const RawTerminal&) = delete;
+  RawTerminal& operator=(const RawTerminal&) = delete;
+
+ private:
+  termios saved_{};
+  bool active_ = false;
+};
+
+enum class Key { none, up, down, left, right, side_left, side_right, stop, quit };
+
+const char* key_name(Key k) {
+  switch (k) {
+    case Key::up:
+      return "up";
+    case Key::down:
+      return "down";
+    case Key::left:
+      return "left";
+    case Key::right:
+      return "right";
+    case Key::side_left:
+      return "side_left";
+    case Key::side_right:
+      return "side_right";
+    case Key::stop:
+      return "stop";
+    case Key::quit:
+      return "quit";
+    default:
+      return "";
+  }
+}
+
+/// The keys in the bytes waiting on stdin, waiting at most timeout_ms for the first.
+std::string read_input(int timeout_ms) {
+  pollfd fd{STDIN_FILENO, POLLIN, 0};
+  std::string bytes;
+  if (poll(&fd, 1, timeout_ms) <= 0 || (fd.revents & POLLIN) == 0) return bytes;
+  char buffer[64];
+  const ssize_t n = read(STDIN_FILENO, buffer, sizeof(buffer));
+  if (n > 0) bytes.assign(buffer, std::size_t(n));
+  return bytes;
+}
+
+/// Splits input into keys: arrows arrive as ESC [ A..D (or ESC O A..D).
+template <typename OnKey>
+void parse_keys(const std::string& in, OnKey on_key) {
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const char c = in[i];
+    if (c == '\x1b' && i + 2 < in.size() && (in[i + 1] == '[' || in[i + 1] == 'O')) {
+      const char a = in[i + 2];
+      i += 2;
+      if (a == 'A') on_key(Key::up);
+      if (a == 'B') on_key(Key::down);
+      if (a == 'C') on_key(Key::right);
+      if (a == 'D') on_key(Key::left);
+      continue;
+    }
+    switch (c) {
+      case 'w':
+        on_key(Key::up);
+        break;
+      case 's':
+        on_key(Key::down);
+        break;
+      case 'a':
+        on_key(Key::left);
+        break;
+      case 'd':
+        on_key(Key::right);
+        break;
+      case 'z':
+        on_key(Key::side_left);
+        break;
+      case 'c':
+        on_key(Key::side_right);
+        break;
+      case ' ':
+        on_key(Key::stop);
+        break;
+      case 'q':
+      case 'Q':
+        on_key(Key::quit);
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double speed = 1.0, max_time = 1e18;
+  std::string record = "teleop_commands.csv", summary_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--speed" && i + 1 < argc) {
+      speed = std::atof(argv[++i]);
+    } else if (a == "--record" && i + 1 < argc) {
+      record = argv[++i];
+    } else if (a == "--max-time" && i + 1 < argc) {
+      max_time = std::atof(argv[++i]);
+    } else if (a == "--summary" && i + 1 < argc) {
+      summary_path = argv[++i];
+    } else {
+      std::fprintf(stderr,
+                   "teleop: unknown argument '%s'\nusage: teleop [--speed S] [--record FILE] "
+                   "[--max-time T] [--summary FILE]\n",
+                   a.c_str());
+      return 2;
+    }
+  }
+  if (!(speed > 0.0 && speed <= 1000.0) || !(max_time > 0.0)) {
+    std::fprintf(stderr, "teleop: --speed expects (0, 1000], --max-time a time > 0\n");
+    return 2;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  const walkgen::KinematicTree<double> tree = walkgen_test::humanoid_tree();
+  walkgen::MujocoRobot robot;
+  walkgen_test::HumanoidIk ik(tree);
+  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  walkgen_test::SimLoop loop(settings, robot, ik);
+  std::ofstream csv(record);
+  if (!csv) {
+    std::fprintf(stderr, "teleop: cannot write '%s'\n", record.c_str());
+    return 2;
+  }
+  csv << "wall_time,sim_time,v_x,v_y,omega,key\n";
+  csv.precision(6);
+  std::printf("teleop: standing up (moving the CoM over the left foot)...\n");
+  if (loop.start().status != walkgen::LoopStatus::ok) {
+    std::fprintf(stderr, "teleop: %s\n", loop.last_tick().message.c_str());
+    return 1;
+  }
+  const Eigen::Vector3d limit = 0.95 * settings.max_command;
+  const Eigen::Vector3d step(0.005, 0.0015, 0.015);
+  Eigen::Vector3d command = Eigen::Vector3d::Zero();
+  const double t0 = robot.output().time;
+  const auto wall0 = std::chrono::steady_clock::now();
+  auto wall = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+  RawTerminal terminal;
+  bool quit = false;
+  long rows = 0;
+  double zmp_sum = 0.0;
+  long zmp_n = 0;
+  walkgen::LoopStatus status = walkgen::LoopStatus::ok;
+  std::string key_this_tick;
+  while (!quit && g_stop == 0 && robot.output().time - t0 < max_time) {
+    // Keys until the wall clock has caught up with the simulation.
+    const double sim = robot.output().time - t0;
+    do {
+      const double wait = sim / speed - wall();
+      parse_keys(read_input(int(std::max(0.0, std::min(wait, 0.02) * 1000.0))), [&](Key k) {
+        switch (k) {
+          case Key::up:
+            command.x() += step.x();
+            break;
+          case Key::down:
+            command.x() -= step.x();
+            break;
+          case Key::left:
+            command.z() += step.z();
+            break;
+          case Key::right:
+            command.z() -= step.z();
+            break;
+          case Key::side_left:
+            command.y() += step.y();
+            break;
+          case Key::side_right:
+            command.y() -= step.y();
+            break;
+          case Key::stop:
+            command.setZero();
+            break;
+          case Key::quit:
+            quit = true;
+            break;
+          default:
+            break;
+        }
+        command = command.cwiseMax(-limit).cwiseMin(limit);  // within the NMPC's limits
+        for (int i = 0; i < 3; ++i) {                        // no drift from repeated ± steps
+          if (std::abs(command[i]) < 1e-9) command[i] = 0.0;
+        }
+        key_this_tick += std::string(key_this_tick.empty() ? "" : " ") + key_name(k);
+      });
+    } while (!quit && g_stop == 0 && wall() < sim / speed);
+    if (quit) break;
+    loop.set_command(command);
+    const walkgen::LoopTick& tick = loop.tick();
+    status = tick.status;
+    for (const auto& s : loop.samples()) {
+      if (!s.zmp.valid) continue;
+      zmp_sum += std::hypot(s.zmp.zmp_W.x() - s.plan.zmp_x, s.zmp.zmp_W.y() - s.plan.zmp_y);
+      ++zmp_n;
+    }
+    csv << wall() << ',' << robot.output().time - t0 << ',' << command.x() << ',' << command.y()
+        << ',' << command.z() << ',' << key_this_tick << '\n';
+    ++rows;
+    key_this_tick.clear();
+    const auto& st = loop.mpc().state();
+    const walkgen::PlanarPose pose = walkgen_test::walking_pose(st);
+    // The screen: home, clear, then the panel.
+    std::printf(
+        "\x1b[H\x1b[2J"
+        "walkgen teleop: the humanoid in MuJoCo (NMPC + IK closed loop), %.0fx real time\r\n"
+        "  Up/w Down/s: v_x +-%.3f m/s   Left/a Right/d: omega +-%.3f rad/s\r\n"
+        "  z/c: v_y +-%.4f m/s   space: stop   q: quit\r\n\r\n"
+        "command   v_x %+.3f m/s   v_y %+.4f m/s   omega %+.3f rad/s   (limits %.3f %.4f %.3f)\r\n"
+        "time      %.1f s simulated, %.1f s wall\r\n"
+        "robot     x %+.3f m   y %+.3f m   heading %+.3f rad   base height %.3f m\r\n"
+        "balance   NMPC vs measured ZMP %.2f cm (mean)   status %s   QP %s\r\n"
+        "recorded  %ld ticks to %s\r\n",
+        speed, step.x(), step.z(), step.y(), command.x(), command.y(), command.z(), limit.x(),
+        limit.y(), limit.z(), robot.output().time - t0, wall(), pose.x, pose.y, pose.yaw,
+        robot.output().base_height, zmp_n > 0 ? 100.0 * zmp_sum / double(zmp_n) : 0.0,
+        walkgen::to_string(status), walkgen::to_string(tick.mpc), rows, record.c_str());
+    std::fflush(stdout);
+    if (status == walkgen::LoopStatus::fallen || status == walkgen::LoopStatus::diverged) break;
+  }
+  csv.flush();
+  const auto& st = loop.mpc().state();
+  const walkgen::PlanarPose pose = walkgen_test::walking_pose(st);
+  const double walked = std::hypot(pose.x, pose.y);
+  std::printf("\r\nteleop: %s after %.1f s simulated; %.2f m from the start; %ld ticks in %s\r\n",
+              walkgen::to_string(status), robot.output().time - t0, walked, rows, record.c_str());
+  if (!summary_path.empty()) {
+    std::ofstream summary(summary_path);
+    summary << "status=" << walkgen::to_string(status) << "\nsim_time=" << robot.output().time - t0
+            << "\nx=" << pose.x << "\ny=" << pose.y << "\nheading=" << pose.yaw << "\nrows=" << rows
+            << "\n";
+  }
+  const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed;
+  return ok && csv.good() ? 0 : 1;
+}

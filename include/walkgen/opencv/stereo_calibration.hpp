@@ -1,0 +1,513 @@
+#pragma once
+/// @file
+/// Mono and stereo camera calibration from chessboard images, rectification, and their YAML files
+/// (thesis §3.2, eq. 3.9–3.15; §10.1, Tables 10.1–10.2). OpenCV adapter: target walkgen::opencv
+/// (Debian: libopencv-dev, libopencv-contrib-dev); the core never includes this header.
+///
+/// Camera model (eq. 3.9–3.11, with the erratum of DESIGN.md §5: the y row of eq. 3.11 scales
+/// y_{c,d}, not x_{c,d}): K = [f_x 0 c_x; 0 f_y c_y; 0 0 1] and OpenCV's distortion vector
+/// (k₁, k₂, p₁, p₂, k₃[, k₄, k₅, k₆]). Pixel coordinates are OpenCV's: (0, 0) is the centre of the
+/// top-left pixel. Lengths (square size, baseline T) are in the unit of the square size, metres
+/// by default.
+///
+/// Calibration minimises the re-projection error of the chessboard corners (eq. 3.12–3.14); the
+/// RMS over all corners is reported as `rms` [px]. The stereo calibration adds the relative pose
+/// (R, T) of the right camera, the essential and fundamental matrices (eq. 3.15), the mean
+/// distance of each corner to the epipolar line of its partner [px], and the rectification
+/// transforms R₁, R₂ and projection matrices P₁, P₂ (Table 10.2) with the disparity-to-depth
+/// matrix Q that walkgen::StereoDepth uses.
+///
+/// Errors (convention 10): a missing or unreadable image, images of different sizes, a board
+/// that is not found, a calibration file that cannot be read or lacks a key throw
+/// walkgen::invalid_argument naming the image, file or key.
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+
+namespace walkgen {
+
+/// The chessboard and how its corners are found and refined.
+struct ChessboardSettings {
+  int columns = 9;             ///< inner corners along a row (OpenCV's sample board: 9)
+  int rows = 6;                ///< inner corners along a column (OpenCV's sample board: 6)
+  double square_size = 0.025;  ///< a in eq. 3.12 [m]; sets the unit of T and of depth
+  /// Half side of cv::cornerSubPix's search window [px] (11: a 23 × 23 window). Smaller for
+  /// small or low-resolution boards.
+  int subpixel_half_window = 11;
+};
+
+/// Which camera parameters the calibration estimates.
+struct CalibrationSettings {
+  ChessboardSettings board;
+  /// f_x = f_y (square pixels): one focal length to estimate, more robust with few views.
+  bool fix_aspect_ratio = true;
+  /// Stereo only: both cameras share one focal length (identical lenses).
+  bool same_focal_length = true;
+  /// Stereo only: p₁ = p₂ = 0 (eq. 3.10–3.11 without the tangential terms).
+  bool zero_tangent_distortion = true;
+  /// Stereo only: OpenCV's rational model with k₃..k₅ fixed at 0 (k₁, k₂, k₆ estimated).
+  bool rational_model = true;
+  /// Rectification's free scaling (cv::stereoRectify's alpha): 0 keeps only valid pixels, 1 keeps
+  /// every source pixel, -1 OpenCV's default.
+  double rectify_alpha = -1.0;
+  /// A view without a detected board: false throws (naming the image), true leaves it out (the
+  /// result lists the views used).
+  bool skip_views_without_board = false;
+};
+
+/// One camera's intrinsics (Table 10.1) and how well they fit.
+struct MonoCalibration {
+  cv::Size image_size;
+  cv::Mat camera_matrix;  ///< K (3 × 3, CV_64F), eq. 3.9
+  cv::Mat distortion;  ///< (k₁, k₂, p₁, p₂, k₃[, …]) (1 × n, CV_64F), eq. 3.10–3.11
+  double rms = 0.0;    ///< RMS re-projection error over all corners [px]
+  std::vector<double> view_rms;  ///< RMS re-projection error of each view used [px]
+  std::vector<int> views_used;   ///< indices of the input views that were used
+};
+
+/// A calibrated and rectified stereo pair (Tables 10.1–10.2).
+struct StereoCalibration {
+  MonoCalibration left;
+  MonoCalibration right;
+  cv::Mat rotation;     ///< R (3 × 3): right camera from left camera
+  cv::Mat translation;  ///< T (3 × 1) [square-size unit]: right camera from left camera
+  cv::Mat essential;    ///< E (3 × 3)
+  cv::Mat fundamental;  ///< F (3 × 3), eq. 3.15: x_rightᵀ F x_left = 0
+  cv::Mat rectification_left, rectification_right;  ///< R₁, R₂ (3 × 3), Table 10.2
+  cv::Mat projection_left, projection_right;        ///< P₁, P₂ (3 × 4), Table 10.2
+  cv::Mat disparity_to_depth;                       ///< Q (4 × 4): (u, v, d, 1) → (X, Y, Z, W)
+  double rms = 0.0;                                 ///< stereo RMS re-projection error [px]
+  /// Mean distance of an undistorted corner to the epipolar line of its partner [px], over
+  /// both images' corners. (OpenCV's stereo_calib sample adds the left and right distances of a
+  /// pair and reports twice this.)
+  double mean_epipolar_error = 0.0;
+  std::vector<int> views_used;  ///< indices of the input pairs that were used
+};
+
+/// Reads an image (cv::imread flags, default grey).
+/// @throws walkgen::invalid_argument when the file is missing, unreadable or empty.
+inline cv::Mat read_image(const std::string& path, int flags = cv::IMREAD_GRAYSCALE) {
+  // Checked first: OpenCV logs a warning to stderr for a file it cannot open.
+  check_argument(std::filesystem::is_regular_file(path), "walkgen::read_image",
+                 "a readable image file", "'" + path + "' (missing)");
+  cv::Mat image = cv::imread(path, flags);
+  check_argument(!image.empty(), "walkgen::read_image", "a readable image file",
+                 "'" + path + "' (missing, unreadable or empty)");
+  return image;
+}
+
+namespace detail {
+
+inline cv::Mat to_grey(const cv::Mat& image) {
+  if (image.channels() == 1) return image;
+  cv::Mat grey;
+  cv::cvtColor(image, grey, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return grey;
+}
+
+inline std::string size_string(const cv::Size& s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
+
+inline std::string view_name(const std::vector<std::string>& names, std::size_t i) {
+  return i < names.size() ? "'" + names[i] + "'" : "view " + std::to_string(i);
+}
+
+/// The board's corners in its own frame (eq. 3.12): (w a, h a, 0).
+inline std::vector<cv::Point3f> board_points(const ChessboardSettings& b) {
+  std::vector<cv::Point3f> points;
+  points.reserve(static_cast<std::size_t>(b.columns * b.rows));
+  for (int h = 0; h < b.rows; ++h) {
+    for (int w = 0; w < b.columns; ++w) {
+      points.emplace_back(static_cast<float>(w * b.square_size),
+                          static_cast<float>(h * b.square_size), 0.0f);
+    }
+  }
+  return points;
+}
+
+inline void check_board(const ChessboardSettings& b) {
+  check_argument(b.columns >= 2 && b.rows >= 2, "ChessboardSettings: columns x rows",
+                 "at least 2x2 inner corners",
+                 std::to_string(b.columns) + "x" + std::to_string(b.rows));
+  check_positive("ChessboardSettings: square_size", b.square_size);
+  check_argument(b.subpixel_half_window >= 1, "ChessboardSettings: subpixel_half_window",
+                 "a half window >= 1 px", b.subpixel_half_window);
+}
+
+/// Sum of squared re-projection errors and corner count of one view.
+inline std::pair<double, std::size_t> reprojection(const std::vector<cv::Point3f>& object,
+                                                   const std::vector<cv::Point2f>& image,
+                                                   const cv::Mat& rvec, const cv::Mat& tvec,
+                                                   const cv::Mat& k, const cv::Mat& d) {
+  std::vector<cv::Point2f> projected;
+  cv::projectPoints(object, rvec, tvec, k, d, projected);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < image.size(); ++i) {
+    const cv::Point2f e = image[i] - projected[i];
+    sum += static_cast<double>(e.x) * e.x + static_cast<double>(e.y) * e.y;
+  }
+  return {sum, image.size()};
+}
+
+/// A view without the board: an error naming `where`, unless such views may be skipped.
+inline void check_board_found(bool skip_allowed, const ChessboardSettings& board,
+                              const std::string& where) {
+  check_argument(skip_allowed, where.c_str(),
+                 "a visible " + std::to_string(board.columns) + "x" + std::to_string(board.rows) +
+                     " inner-corner chessboard",
+                 "none found",
+                 "check the board size in ChessboardSettings, or set skip_views_without_board");
+}
+
+}  // namespace detail
+
+/// Finds the chessboard's inner corners with sub-pixel accuracy (the corner detection of §3.2).
+/// @param image grey or BGR image.
+/// @param found false when the board is not in the image (corners then empty).
+/// @throws walkgen::invalid_argument when the image is empty or the settings are invalid.
+inline std::vector<cv::Point2f> find_chessboard(const cv::Mat& image,
+                                                const ChessboardSettings& board, bool& found) {
+  detail::check_board(board);
+  check_argument(!image.empty(), "walkgen::find_chessboard: image", "a non-empty image",
+                 "an empty one");
+  const cv::Mat grey = detail::to_grey(image);
+  std::vector<cv::Point2f> corners;
+  const cv::Size pattern(board.columns, board.rows);
+  found = cv::findChessboardCorners(
+      grey, pattern, corners,
+      cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FAST_CHECK);
+  if (!found) {
+    corners.clear();
+    return corners;
+  }
+  const int w = board.subpixel_half_window;
+  cv::cornerSubPix(grey, corners, cv::Size(w, w), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
+  return corners;
+}
+
+/// Calibrates one camera from views of the chessboard (eq. 3.9–3.14): K with f_x = f_y when
+/// fix_aspect_ratio, and (k₁, k₂, p₁, p₂, k₃).
+/// @param names optional names of the views (file names), used in error messages.
+/// @throws walkgen::invalid_argument for empty images, images of different sizes, a view without
+///   the board (unless skip_views_without_board) or fewer than 3 usable views.
+inline MonoCalibration calibrate_camera(const std::vector<cv::Mat>& images,
+                                        const CalibrationSettings& settings = {},
+                                        const std::vector<std::string>& names = {}) {
+  detail::check_board(settings.board);
+  check_argument(images.size() >= 3, "walkgen::calibrate_camera: images", "at least 3 views",
+                 images.size());
+  MonoCalibration result;
+  std::vector<std::vector<cv::Point2f>> image_points;
+  const std::vector<cv::Point3f> board = detail::board_points(settings.board);
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const std::string where = "walkgen::calibrate_camera: " + detail::view_name(names, i);
+    check_argument(!images[i].empty(), where.c_str(), "a non-empty image", "an empty one");
+    if (i == 0) result.image_size = images[i].size();
+    check_argument(images[i].size() == result.image_size, where.c_str(),
+                   "the size of the first view, " + detail::size_string(result.image_size),
+                   detail::size_string(images[i].size()));
+    bool found = false;
+    std::vector<cv::Point2f> corners = find_chessboard(images[i], settings.board, found);
+    if (!found) {
+      detail::check_board_found(settings.skip_views_without_board, settings.board, where);
+      continue;
+    }
+    image_points.push_back(std::move(corners));
+    result.views_used.push_back(static_cast<int>(i));
+  }
+  check_argument(image_points.size() >= 3, "walkgen::calibrate_camera: views with a board",
+                 "at least 3", image_points.size());
+  const std::vector<std::vector<cv::Point3f>> object_points(image_points.size(), board);
+  result.camera_matrix = cv::Mat::eye(3, 3, CV_64F);
+  int flags = 0;
+  if (settings.fix_aspect_ratio) flags |= cv::CALIB_FIX_ASPECT_RATIO;
+  std::vector<cv::Mat> rvecs, tvecs;
+  result.rms = cv::calibrateCamera(object_points, image_points, result.image_size,
+                                   result.camera_matrix, result.distortion, rvecs, tvecs, flags);
+  result.distortion = result.distortion.reshape(1, 1);
+  for (std::size_t v = 0; v < image_points.size(); ++v) {
+    const auto [sum, n] = detail::reprojection(object_points[v], image_points[v], rvecs[v],
+                                               tvecs[v], result.camera_matrix, result.distortion);
+    result.view_rms.push_back(std::sqrt(sum / static_cast<double>(n)));
+  }
+  return result;
+}
+
+/// Calibrates a stereo pair from simultaneous views of the chessboard and rectifies it (§3.2,
+/// eq. 3.15; §10.1): both intrinsics, R, T, E, F, R₁, R₂, P₁, P₂ and Q. Intrinsics start from
+/// cv::initCameraMatrix2D and are refined jointly with the relative pose.
+/// @param names optional names of the pairs (e.g. the left file names) for error messages.
+/// @throws walkgen::invalid_argument for differing numbers of left and right views, empty
+///   images, images of different sizes, a pair without the board in both images (unless
+///   skip_views_without_board) or fewer than 3 usable pairs.
+inline StereoCalibration calibrate_stereo(const std::vector<cv::Mat>& left,
+                                          const std::vector<cv::Mat>& right,
+                                          const CalibrationSettings& settings = {},
+                                          const std::vector<std::string>& names = {}) {
+  detail::check_board(settings.board);
+  check_argument(left.size() == right.size(), "walkgen::calibrate_stereo: right views",
+                 "as many as left views (" + std::to_string(left.size()) + ")", right.size());
+  check_argument(left.size() >= 3, "walkgen::calibrate_stereo: pairs", "at least 3 pairs",
+                 left.size());
+  StereoCalibration result;
+  cv::Size size;
+  std::vector<std::vector<cv::Point2f>> points_left, points_right;
+  const std::vector<cv::Point3f> board = detail::board_points(settings.board);
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    for (int side = 0; side < 2; ++side) {
+      const cv::Mat& image = side == 0 ? left[i] : right[i];
+      const std::string where = std::string("walkgen::calibrate_stereo: ") +
+                                (side == 0 ? "left " : "right ") + detail::view_name(names, i);
+      check_argument(!image.empty(), where.c_str(), "a non-empty image", "an empty one");
+      if (i == 0 && side == 0) size = image.size();
+      check_argument(image.size() == size, where.c_str(),
+                     "the size of the first left view, " + detail::size_string(size),
+                     detail::size_string(image.size()));
+    }
+    bool found_left = false, found_right = false;
+    std::vector<cv::Point2f> l = find_chessboard(left[i], settings.board, found_left);
+    std::vector<cv::Point2f> r = find_chessboard(right[i], settings.board, found_right);
+    if (!found_left || !found_right) {
+      const std::string where = std::string("walkgen::calibrate_stereo: ") +
+                                (found_left ? "right " : "left ") + detail::view_name(names, i);
+      detail::check_board_found(settings.skip_views_without_board, settings.board, where);
+      continue;
+    }
+    points_left.push_back(std::move(l));
+    points_right.push_back(std::move(r));
+    result.views_used.push_back(static_cast<int>(i));
+  }
+  check_argument(points_left.size() >= 3, "walkgen::calibrate_stereo: pairs with a board",
+                 "at least 3", points_left.size());
+  const std::vector<std::vector<cv::Point3f>> object_points(points_left.size(), board);
+
+  // With fix_aspect_ratio the guess has f_x = f_y, which CALIB_FIX_ASPECT_RATIO then keeps.
+  const double aspect = settings.fix_aspect_ratio ? 1.0 : 0.0;
+  cv::Mat k1 = cv::initCameraMatrix2D(object_points, points_left, size, aspect);
+  cv::Mat k2 = cv::initCameraMatrix2D(object_points, points_right, size, aspect);
+  cv::Mat d1, d2;
+  int flags = cv::CALIB_USE_INTRINSIC_GUESS;
+  if (settings.fix_aspect_ratio) flags |= cv::CALIB_FIX_ASPECT_RATIO;
+  if (settings.same_focal_length) flags |= cv::CALIB_SAME_FOCAL_LENGTH;
+  if (settings.zero_tangent_distortion) flags |= cv::CALIB_ZERO_TANGENT_DIST;
+  if (settings.rational_model) {
+    flags |= cv::CALIB_RATIONAL_MODEL | cv::CALIB_FIX_K3 | cv::CALIB_FIX_K4 | cv::CALIB_FIX_K5;
+  }
+  cv::Mat rotation, translation, essential, fundamental;
+  result.rms = cv::stereoCalibrate(
+      object_points, points_left, points_right, k1, d1, k2, d2, size, rotation, translation,
+      essential, fundamental, flags,
+      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-5));
+  result.rotation = rotation;
+  result.translation = translation;
+  result.essential = essential;
+  result.fundamental = fundamental;
+  result.left.image_size = result.right.image_size = size;
+  result.left.camera_matrix = k1;
+  result.right.camera_matrix = k2;
+  result.left.distortion = d1.reshape(1, 1);
+  result.right.distortion = d2.reshape(1, 1);
+  result.left.views_used = result.right.views_used = result.views_used;
+
+  // Each camera's own fit with the joint intrinsics (poses from solvePnP), for the report.
+  for (int side = 0; side < 2; ++side) {
+    MonoCalibration& mono = side == 0 ? result.left : result.right;
+    const auto& points = side == 0 ? points_left : points_right;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      cv::Mat rvec, tvec;
+      cv::solvePnP(object_points[v], points[v], mono.camera_matrix, mono.distortion, rvec, tvec);
+      const auto [s, n] = detail::reprojection(object_points[v], points[v], rvec, tvec,
+                                               mono.camera_matrix, mono.distortion);
+      mono.view_rms.push_back(std::sqrt(s / static_cast<double>(n)));
+      sum += s;
+      count += n;
+    }
+    mono.rms = std::sqrt(sum / static_cast<double>(count));
+  }
+
+  // Epipolar check (eq. 3.15): distance of each undistorted corner to its partner's line.
+  double error = 0.0;
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < points_left.size(); ++v) {
+    std::vector<cv::Point2f> ul, ur;
+    cv::undistortPoints(points_left[v], ul, k1, result.left.distortion, cv::noArray(), k1);
+    cv::undistortPoints(points_right[v], ur, k2, result.right.distortion, cv::noArray(), k2);
+    std::vector<cv::Vec3f> lines_in_right, lines_in_left;
+    cv::computeCorrespondEpilines(ul, 1, fundamental, lines_in_right);
+    cv::computeCorrespondEpilines(ur, 2, fundamental, lines_in_left);
+    for (std::size_t j = 0; j < ul.size(); ++j) {
+      error += std::abs(ul[j].x * lines_in_left[j][0] + ul[j].y * lines_in_left[j][1] +
+                        lines_in_left[j][2]) +
+               std::abs(ur[j].x * lines_in_right[j][0] + ur[j].y * lines_in_right[j][1] +
+                        lines_in_right[j][2]);
+      count += 2;
+    }
+  }
+  result.mean_epipolar_error = error / static_cast<double>(count);
+
+  cv::stereoRectify(k1, result.left.distortion, k2, result.right.distortion, size, rotation,
+                    translation, result.rectification_left, result.rectification_right,
+                    result.projection_left, result.projection_right, result.disparity_to_depth,
+                    cv::CALIB_ZERO_DISPARITY, settings.rectify_alpha, size);
+  return result;
+}
+
+/// Reads the pairs (left_paths[i], right_paths[i]) and calibrates them (calibrate_stereo).
+/// @throws walkgen::invalid_argument as calibrate_stereo, naming the files, and for a missing
+///   or unreadable file.
+inline StereoCalibration calibrate_stereo_files(const std::vector<std::string>& left_paths,
+                                                const std::vector<std::string>& right_paths,
+                                                const CalibrationSettings& settings = {}) {
+  check_argument(
+      left_paths.size() == right_paths.size(), "walkgen::calibrate_stereo_files: right files",
+      "as many as left files (" + std::to_string(left_paths.size()) + ")", right_paths.size());
+  std::vector<cv::Mat> left, right;
+  for (std::size_t i = 0; i < left_paths.size(); ++i) {
+    left.push_back(read_image(left_paths[i]));
+    right.push_back(read_image(right_paths[i]));
+  }
+  return calibrate_stereo(left, right, settings, left_paths);
+}
+
+// --- YAML files (cv::FileStorage) ---------------------------------------------------------------
+
+namespace detail {
+
+inline cv::FileNode required_node(const cv::FileStorage& fs, const std::string& path,
+                                  const std::string& key) {
+  const cv::FileNode node = fs[key];
+  check_argument(!node.empty() && !node.isNone(),
+                 ("walkgen::load_stereo_calibration: '" + path + "'").c_str(),
+                 "the key '" + key + "'", "a file without it",
+                 "write the file with walkgen::save_stereo_calibration");
+  return node;
+}
+
+inline cv::Mat required_matrix(const cv::FileStorage& fs, const std::string& path,
+                               const std::string& key, int rows, int cols) {
+  cv::Mat m;
+  required_node(fs, path, key) >> m;
+  check_argument(
+      m.rows == rows && (cols < 0 || m.cols == cols),
+      ("walkgen::load_stereo_calibration: '" + path + "', key '" + key + "'").c_str(),
+      "a " + std::to_string(rows) + "x" + (cols < 0 ? "n" : std::to_string(cols)) + " matrix",
+      std::to_string(m.rows) + "x" + std::to_string(m.cols));
+  m.convertTo(m, CV_64F);
+  return m;
+}
+
+}  // namespace detail
+
+/// Writes a stereo calibration as YAML (cv::FileStorage): image_width, image_height, K1, D1, K2,
+/// D2, R, T, E, F, R1, R2, P1, P2, Q, rms, mean_epipolar_error, rms_left, rms_right.
+/// @throws walkgen::invalid_argument when the file cannot be opened for writing.
+inline void save_stereo_calibration(const StereoCalibration& c, const std::string& path) {
+  cv::FileStorage fs(path, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+  check_argument(fs.isOpened(), "walkgen::save_stereo_calibration", "a writable file",
+                 "'" + path + "'");
+  fs << "image_width" << c.left.image_size.width << "image_height" << c.left.image_size.height;
+  fs << "K1" << c.left.camera_matrix << "D1" << c.left.distortion;
+  fs << "K2" << c.right.camera_matrix << "D2" << c.right.distortion;
+  fs << "R" << c.rotation << "T" << c.translation << "E" << c.essential << "F" << c.fundamental;
+  fs << "R1" << c.rectification_left << "R2" << c.rectification_right;
+  fs << "P1" << c.projection_left << "P2" << c.projection_right << "Q" << c.disparity_to_depth;
+  fs << "rms" << c.rms << "mean_epipolar_error" << c.mean_epipolar_error;
+  fs << "rms_left" << c.left.rms << "rms_right" << c.right.rms;
+}
+
+/// Reads a file written by save_stereo_calibration (rms values are optional).
+/// @throws walkgen::invalid_argument when the file cannot be read, or a key is missing or has the
+///   wrong shape (naming the file and the key).
+inline StereoCalibration load_stereo_calibration(const std::string& path) {
+  check_argument(std::filesystem::is_regular_file(path), "walkgen::load_stereo_calibration",
+                 "a readable YAML file", "'" + path + "' (missing)");
+  cv::FileStorage fs;
+  try {
+    fs.open(path, cv::FileStorage::READ);
+  } catch (const cv::Exception& e) {
+    throw invalid_argument(
+        "walkgen::load_stereo_calibration: expected a YAML file written by "
+        "cv::FileStorage, got '" +
+        path + "' (" + e.what() + ")");
+  }
+  check_argument(fs.isOpened(), "walkgen::load_stereo_calibration", "a readable YAML file",
+                 "'" + path + "' (missing or unreadable)");
+  StereoCalibration c;
+  const int width = static_cast<int>(detail::required_node(fs, path, "image_width"));
+  const int height = static_cast<int>(detail::required_node(fs, path, "image_height"));
+  c.left.image_size = c.right.image_size = cv::Size(width, height);
+  c.left.camera_matrix = detail::required_matrix(fs, path, "K1", 3, 3);
+  c.left.distortion = detail::required_matrix(fs, path, "D1", 1, -1);
+  c.right.camera_matrix = detail::required_matrix(fs, path, "K2", 3, 3);
+  c.right.distortion = detail::required_matrix(fs, path, "D2", 1, -1);
+  c.rotation = detail::required_matrix(fs, path, "R", 3, 3);
+  c.translation = detail::required_matrix(fs, path, "T", 3, 1);
+  c.essential = detail::required_matrix(fs, path, "E", 3, 3);
+  c.fundamental = detail::required_matrix(fs, path, "F", 3, 3);
+  c.rectification_left = detail::required_matrix(fs, path, "R1", 3, 3);
+  c.rectification_right = detail::required_matrix(fs, path, "R2", 3, 3);
+  c.projection_left = detail::required_matrix(fs, path, "P1", 3, 4);
+  c.projection_right = detail::required_matrix(fs, path, "P2", 3, 4);
+  c.disparity_to_depth = detail::required_matrix(fs, path, "Q", 4, 4);
+  if (!fs["rms"].empty()) c.rms = static_cast<double>(fs["rms"]);
+  if (!fs["mean_epipolar_error"].empty()) {
+    c.mean_epipolar_error = static_cast<double>(fs["mean_epipolar_error"]);
+  }
+  if (!fs["rms_left"].empty()) c.left.rms = static_cast<double>(fs["rms_left"]);
+  if (!fs["rms_right"].empty()) c.right.rms = static_cast<double>(fs["rms_right"]);
+  return c;
+}
+
+/// Rectification maps of a calibrated pair: remaps raw left/right images onto the common image
+/// plane of P₁, P₂ (§3.2, figure 10.3), where epipolar lines are image rows.
+class StereoRectifier {
+ public:
+  /// @throws walkgen::invalid_argument when the calibration lacks its matrices.
+  explicit StereoRectifier(const StereoCalibration& c) : size_(c.left.image_size) {
+    check_argument(!c.left.camera_matrix.empty() && !c.rectification_left.empty() &&
+                       !c.projection_right.empty() && size_.area() > 0,
+                   "walkgen::StereoRectifier", "a calibration with K, D, R1, R2, P1, P2",
+                   "missing matrices", "use calibrate_stereo or load_stereo_calibration");
+    cv::initUndistortRectifyMap(c.left.camera_matrix, c.left.distortion, c.rectification_left,
+                                c.projection_left, size_, CV_16SC2, map_left_[0], map_left_[1]);
+    cv::initUndistortRectifyMap(c.right.camera_matrix, c.right.distortion, c.rectification_right,
+                                c.projection_right, size_, CV_16SC2, map_right_[0], map_right_[1]);
+  }
+
+  /// Rectifies a raw pair of the calibrated size.
+  /// @throws walkgen::invalid_argument when an image is empty or not of the calibrated size.
+  void rectify(const cv::Mat& left, const cv::Mat& right, cv::Mat& left_rectified,
+               cv::Mat& right_rectified) const {
+    for (const cv::Mat* m : {&left, &right}) {
+      if (m->size() != size_) {  // the message only on failure: no per-frame strings
+        throw invalid_argument(detail::expected_got(
+            m == &left ? "walkgen::StereoRectifier: left image"
+                       : "walkgen::StereoRectifier: right image",
+            "the calibrated size " + detail::size_string(size_), detail::size_string(m->size())));
+      }
+    }
+    cv::remap(left, left_rectified, map_left_[0], map_left_[1], cv::INTER_LINEAR);
+    cv::remap(right, right_rectified, map_right_[0], map_right_[1], cv::INTER_LINEAR);
+  }
+
+  const cv::Size& image_size() const { return size_; }
+
+ private:
+  cv::Size size_;
+  cv::Mat map_left_[2], map_right_[2];
+};
+
+}  // namespace walkgen

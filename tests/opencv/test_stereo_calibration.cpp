@@ -1,0 +1,180 @@
+// Calibration on OpenCV's 13 stereo chessboard pairs (thesis §3.2, §10.1; issue 6 acceptance):
+// left mono RMS <= 0.45 px with f_x within 1 % of OpenCV's shipped 535.9, stereo RMS <= 0.7 px,
+// mean epipolar error <= 0.5 px; YAML round trip; clear errors for bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+#include <walkgen/opencv/stereo_calibration.hpp>
+
+#include "opencv/data_dir.hpp"
+#include "support/expect_error.hpp"
+
+namespace {
+
+const std::vector<std::string> kViews = {"01", "02", "03", "04", "05", "06", "07",
+                                         "08", "09", "11", "12", "13", "14"};
+
+std::vector<std::string> chessboard_files(const std::string& side) {
+  const std::string dir = walkgen::test::data_path("opencv_stereo_chessboard");
+  std::vector<std::string> files;
+  for (const std::string& v : kViews) files.push_back(dir + "/" + side + v + ".jpg");
+  return files;
+}
+
+std::vector<cv::Mat> read_all(const std::vector<std::string>& files) {
+  std::vector<cv::Mat> images;
+  for (const std::string& f : files) images.push_back(walkgen::read_image(f));
+  return images;
+}
+
+using walkgen_test::expect_invalid_argument;
+
+}  // namespace
+
+TEST(StereoCalibration, LeftMonoMatchesOpenCvReference) {
+  const std::vector<std::string> files = chessboard_files("left");
+  const walkgen::MonoCalibration c = walkgen::calibrate_camera(read_all(files), {}, files);
+  std::printf("left mono: RMS %.4f px, fx %.3f fy %.3f cx %.3f cy %.3f, %zu views\n", c.rms,
+              c.camera_matrix.at<double>(0, 0), c.camera_matrix.at<double>(1, 1),
+              c.camera_matrix.at<double>(0, 2), c.camera_matrix.at<double>(1, 2),
+              c.views_used.size());
+  EXPECT_EQ(c.views_used.size(), 13u);
+  EXPECT_EQ(c.image_size, cv::Size(640, 480));
+  EXPECT_LE(c.rms, 0.45);
+  const double fx = c.camera_matrix.at<double>(0, 0);
+  EXPECT_NEAR(fx, 535.916, 0.01 * 535.916);                // left_intrinsics.yml, shipped by OpenCV
+  EXPECT_DOUBLE_EQ(c.camera_matrix.at<double>(1, 1), fx);  // fix_aspect_ratio
+  EXPECT_NEAR(c.camera_matrix.at<double>(0, 2), 342.283, 2.0);
+  EXPECT_NEAR(c.camera_matrix.at<double>(1, 2), 235.571, 2.0);
+  EXPECT_NEAR(c.distortion.at<double>(0), -0.266, 0.02);  // k1
+  ASSERT_EQ(c.view_rms.size(), 13u);
+  // The per-view errors follow OpenCV's: view 02 is the worst by far (1.18 px there).
+  const auto worst = std::max_element(c.view_rms.begin(), c.view_rms.end());
+  EXPECT_EQ(worst - c.view_rms.begin(), 1);
+}
+
+TEST(StereoCalibration, StereoPairAndYamlRoundTrip) {
+  const std::vector<std::string> left = chessboard_files("left");
+  const std::vector<std::string> right = chessboard_files("right");
+  const walkgen::StereoCalibration c = walkgen::calibrate_stereo_files(left, right);
+  const double baseline = cv::norm(c.translation);
+  std::printf(
+      "stereo: RMS %.4f px, mean epipolar error %.4f px, |T| %.4f m (%.3f squares), f %.2f, "
+      "per-camera RMS %.4f / %.4f px\n",
+      c.rms, c.mean_epipolar_error, baseline, baseline / 0.025,
+      c.left.camera_matrix.at<double>(0, 0), c.left.rms, c.right.rms);
+  EXPECT_EQ(c.views_used.size(), 13u);
+  EXPECT_LE(c.rms, 0.7);
+  EXPECT_LE(c.mean_epipolar_error, 0.5);
+  // Even by the stereo_calib sample's measure (left + right distance per corner pair; OpenCV 4.6
+  // gave 0.445 px there).
+  EXPECT_LE(2.0 * c.mean_epipolar_error, 0.5);
+  EXPECT_NEAR(baseline / 0.025, 3.343, 0.05);  // OpenCV 4.6's stereo_calib: 3.343 squares
+  // Right camera to the right of the left one: T along -x in the left camera's frame.
+  EXPECT_LT(c.translation.at<double>(0), 0.0);
+  // Rectified: both projections share f and c_y; P2's T_x = f * T'_x, Q maps disparity to depth.
+  EXPECT_NEAR(c.projection_left.at<double>(1, 2), c.projection_right.at<double>(1, 2), 1e-9);
+  const double f = c.projection_left.at<double>(0, 0);
+  EXPECT_NEAR(-c.projection_right.at<double>(0, 3) / f, baseline, 1e-6);
+  EXPECT_NEAR(c.disparity_to_depth.at<double>(2, 3), f, 1e-9);
+  // Z = f B / d through Q at d = 10 px.
+  const double w =
+      c.disparity_to_depth.at<double>(3, 2) * 10.0 + c.disparity_to_depth.at<double>(3, 3);
+  EXPECT_NEAR(f / w, f * baseline / 10.0, 1e-6);
+
+  // Rectified corners lie on the same rows (epipolar lines are rows after rectification).
+  bool found_l = false, found_r = false;
+  const walkgen::StereoRectifier rectifier(c);
+  cv::Mat rl, rr;
+  rectifier.rectify(walkgen::read_image(left[0]), walkgen::read_image(right[0]), rl, rr);
+  const auto cl = walkgen::find_chessboard(rl, {}, found_l);
+  const auto cr = walkgen::find_chessboard(rr, {}, found_r);
+  ASSERT_TRUE(found_l && found_r);
+  double row_error = 0.0;
+  for (std::size_t i = 0; i < cl.size(); ++i) row_error += std::abs(cl[i].y - cr[i].y);
+  row_error /= static_cast<double>(cl.size());
+  std::printf("rectified pair 01: mean row difference %.3f px\n", row_error);
+  EXPECT_LT(row_error, 0.5);
+
+  // YAML round trip.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "walkgen_test_stereo_calibration.yml").string();
+  walkgen::save_stereo_calibration(c, path);
+  const walkgen::StereoCalibration loaded = walkgen::load_stereo_calibration(path);
+  EXPECT_EQ(loaded.left.image_size, c.left.image_size);
+  EXPECT_LT(cv::norm(loaded.left.camera_matrix, c.left.camera_matrix, cv::NORM_INF), 1e-9);
+  EXPECT_LT(cv::norm(loaded.right.distortion, c.right.distortion, cv::NORM_INF), 1e-9);
+  EXPECT_LT(cv::norm(loaded.projection_right, c.projection_right, cv::NORM_INF), 1e-9);
+  EXPECT_LT(cv::norm(loaded.disparity_to_depth, c.disparity_to_depth, cv::NORM_INF), 1e-9);
+  EXPECT_DOUBLE_EQ(loaded.rms, c.rms);
+  EXPECT_DOUBLE_EQ(loaded.mean_epipolar_error, c.mean_epipolar_error);
+  std::filesystem::remove(path);
+}
+
+TEST(StereoCalibration, MissingYamlKeyNamesFileAndKey) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "walkgen_test_missing_key.yml").string();
+  {
+    cv::FileStorage fs(path, cv::FileStorage::WRITE);
+    fs << "image_width" << 640 << "image_height" << 480;
+    fs << "K1" << cv::Mat::eye(3, 3, CV_64F) << "D1" << cv::Mat::zeros(1, 5, CV_64F);
+  }
+  expect_invalid_argument([&] { walkgen::load_stereo_calibration(path); }, {path, "'K2'"});
+  {
+    cv::FileStorage fs(path, cv::FileStorage::WRITE);
+    fs << "image_width" << 640 << "image_height" << 480;
+    fs << "K1" << cv::Mat::eye(2, 2, CV_64F);
+  }
+  expect_invalid_argument([&] { walkgen::load_stereo_calibration(path); },
+                          {path, "'K1'", "3x3", "2x2"});
+  std::filesystem::remove(path);
+  expect_invalid_argument([&] { walkgen::load_stereo_calibration(path); }, {path, "missing"});
+}
+
+TEST(StereoCalibration, BadInputGivesClearErrors) {
+  const std::vector<std::string> left = chessboard_files("left");
+  const std::vector<std::string> right = chessboard_files("right");
+  // A missing file.
+  expect_invalid_argument([&] { walkgen::read_image(left[0] + ".nosuch"); },
+                          {".nosuch", "missing"});
+  // A board that is not found: the wrong board size.
+  walkgen::CalibrationSettings wrong;
+  wrong.board.columns = 7;
+  wrong.board.rows = 5;
+  std::vector<cv::Mat> three(3, walkgen::read_image(left[0]));
+  expect_invalid_argument([&] { walkgen::calibrate_camera(three, wrong, {left[0]}); },
+                          {left[0], "7x5", "none found"});
+  // Images of different sizes.
+  std::vector<cv::Mat> mixed = three;
+  cv::resize(mixed[2], mixed[2], cv::Size(320, 240));
+  expect_invalid_argument([&] { walkgen::calibrate_camera(mixed); },
+                          {"view 2", "640x480", "320x240"});
+  // An empty image.
+  std::vector<cv::Mat> with_empty = three;
+  with_empty[1] = cv::Mat();
+  expect_invalid_argument([&] { walkgen::calibrate_camera(with_empty); }, {"view 1", "empty"});
+  // Different numbers of left and right views.
+  expect_invalid_argument([&] { walkgen::calibrate_stereo(three, {three[0]}); },
+                          {"right views", "3"});
+  // A board hidden in one right view: named, or skipped on request.
+  std::vector<cv::Mat> l, r;
+  for (int i = 0; i < 4; ++i) {
+    l.push_back(walkgen::read_image(left[static_cast<std::size_t>(i)]));
+    r.push_back(walkgen::read_image(right[static_cast<std::size_t>(i)]));
+  }
+  r[2] = cv::Mat(r[2].size(), CV_8U, cv::Scalar(128));
+  expect_invalid_argument(
+      [&] {
+        walkgen::calibrate_stereo(l, r, {}, {"a", "b", "c", "d"});
+      },
+      {"right 'c'", "none found"});
+  walkgen::CalibrationSettings skip;
+  skip.skip_views_without_board = true;
+  const walkgen::StereoCalibration c = walkgen::calibrate_stereo(l, r, skip);
+  EXPECT_EQ(c.views_used, (std::vector<int>{0, 1, 3}));
+}
