@@ -4,8 +4,8 @@
 // Heicub's speeds. The counter real_time_factor is simulated seconds per wall-clock second
 // (goal ≥ 10); side by side, the parts: the physics alone for the same 0.4 s (the robot standing
 // on its position servos) and the NMPC + IK without physics.
-//   build/release/benchmarks/bench_simulation --benchmark_repetitions=5 \
-//       --benchmark_report_aggregates_only=true
+//   build/release/benchmarks/bench_simulation --benchmark_repetitions=5
+//       --benchmark_report_aggregates_only=true   (one command line)
 #include <benchmark/benchmark.h>
 
 #include "support/simulated_tasks.hpp"

@@ -327,4 +327,51 @@ TEST(MujocoRobot, AddsSceneObjectsToTheWorldAndRendersAFreeView) {
   EXPECT_NE(thrown_message(settings).find("'ok'"), std::string::npos);
 }
 
+TEST(MujocoRobot, MovesMovableObjectsAndTexturesTexturedOnes) {
+  MujocoRobotSettings settings;
+  walkgen::SceneObject person;
+  person.name = "person";
+  person.shape = walkgen::SceneShape::cylinder;
+  person.position = Eigen::Vector3d(2.0, 1.0, 0.0);
+  person.size = Eigen::Vector3d(0.2, 0.2, 1.7);
+  person.movable = true;
+  walkgen::SceneObject wall;
+  wall.name = "wall";
+  wall.position = Eigen::Vector3d(1.5, 0.0, 0.0);
+  wall.size = Eigen::Vector3d(0.1, 2.0, 1.0);
+  wall.rgb = Eigen::Vector3d(0.2, 0.6, 0.3);
+  wall.textured = true;
+  settings.objects = {person, wall};
+  MujocoRobot robot(settings);
+  const int geom = mj_name2id(robot.model(), mjOBJ_GEOM, "person");
+  ASSERT_GE(geom, 0);
+  ASSERT_EQ(robot.step(0.01), RobotStatus::ok);
+  const double* p = robot.data()->geom_xpos + 3 * geom;
+  EXPECT_NEAR(p[0], 2.0, 1e-9);  // the keyframe reset kept the object where it was placed
+  EXPECT_NEAR(p[1], 1.0, 1e-9);
+  EXPECT_NEAR(p[2], 0.85, 1e-9);
+  robot.set_object_position("person", {2.5, -0.5, 0.0});
+  ASSERT_EQ(robot.step(0.01), RobotStatus::ok);
+  EXPECT_NEAR(p[0], 2.5, 1e-9);
+  EXPECT_NEAR(p[1], -0.5, 1e-9);
+  EXPECT_NEAR(p[2], 0.85, 1e-9);
+  EXPECT_THROW(robot.set_object_position("wall", {0, 0, 0}), walkgen::invalid_argument);
+  EXPECT_THROW(robot.set_object_position("nobody", {0, 0, 0}), walkgen::invalid_argument);
+  EXPECT_THROW(robot.set_object_position("person", {std::nan(""), 0, 0}),
+               walkgen::invalid_argument);
+  // The textured wall fills the chest cameras' view: speckle, not one flat colour.
+  const walkgen::StereoImages& images = robot.render_cameras();
+  ASSERT_EQ(images.status, walkgen::RenderStatus::ok) << images.message;
+  const walkgen::CameraImage& left = images.left;
+  int lo = 255, hi = 0;
+  for (int col = 140; col < 180; ++col) {  // the middle of the image: the wall
+    const int g = left.rgb[(std::size_t(100) * left.width + col) * 3 + 1];
+    lo = std::min(lo, g);
+    hi = std::max(hi, g);
+  }
+  EXPECT_GT(hi - lo, 40);
+  EXPECT_NEAR(left.depth[std::size_t(100) * left.width + 160],
+              1.45 - left.pose_W_C.translation().x(), 0.05);
+}
+
 }  // namespace

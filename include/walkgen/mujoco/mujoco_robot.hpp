@@ -60,6 +60,12 @@ struct SceneObject {
   Eigen::Vector3d size = Eigen::Vector3d(0.1, 0.1, 0.1);
   Eigen::Vector3d rgb = Eigen::Vector3d(0.8, 0.2, 0.1);  ///< colour, each in [0, 1]
   bool collides = true;  ///< false: visible only (the robot walks through it)
+  /// A speckle texture in the object's colour instead of a flat one: stereo block matching
+  /// needs texture to find the object (thesis §3.1).
+  bool textured = false;
+  /// A mocap body that MujocoRobot::set_object_position() moves (a walking person, say); it
+  /// is not moved by contacts.
+  bool movable = false;
 };
 
 /// How a MujocoRobot maps our names onto the model. The defaults describe walkgen's humanoid.
@@ -196,6 +202,28 @@ class MujocoRobot final : public Robot {
     return true;
   }
 
+  /// Moves a movable scene object (SceneObject::movable): `position` is the centre of its base,
+  /// as in SceneObject::position; it takes effect from the next step.
+  /// @throws walkgen::invalid_argument for an unknown or unmovable object or a non-finite position.
+  void set_object_position(const std::string& name, const Eigen::Vector3d& position) {
+    check_argument(position.allFinite(), "MujocoRobot::set_object_position", "a finite position",
+                   "NaN or inf");
+    for (const SceneObject& o : settings_.objects) {
+      if (o.name != name) continue;
+      check_argument(o.movable, "MujocoRobot::set_object_position",
+                     "a movable object (SceneObject::movable)", "'" + name + "'");
+      const int body = mj_name2id(model_.get(), mjOBJ_BODY, name.c_str());
+      const int mocap = model_->body_mocapid[body];
+      const double half_height = o.shape == SceneShape::sphere ? o.size.x() : o.size.z() / 2.0;
+      data_->mocap_pos[3 * mocap + 0] = position.x();
+      data_->mocap_pos[3 * mocap + 1] = position.y();
+      data_->mocap_pos[3 * mocap + 2] = position.z() + half_height;
+      return;
+    }
+    check_argument(false, "MujocoRobot::set_object_position", "the name of a scene object",
+                   "'" + name + "'");
+  }
+
   void reset() override {
     mj_resetData(model_.get(), data_.get());
     if (keyframe_ >= 0) {
@@ -260,8 +288,9 @@ class MujocoRobot final : public Robot {
     const std::size_t end = xml.rfind("</worldbody>");
     check_argument(end != std::string::npos, "MujocoRobot: model_path",
                    "an MJCF with a <worldbody> to add objects to", "'" + path + "'");
-    std::ostringstream bodies;
-    bodies.precision(9);
+    std::ostringstream bodies, assets;
+    bodies.precision(17);
+    assets.precision(17);
     for (const SceneObject& o : settings_.objects) {
       bool name_ok = !o.name.empty();
       for (char c : o.name)
@@ -277,7 +306,8 @@ class MujocoRobot final : public Robot {
       const double half_height = o.shape == SceneShape::sphere ? o.size.x() : o.size.z() / 2.0;
       bodies << "    <body name=\"" << o.name << "\" pos=\"" << o.position.x() << ' '
              << o.position.y() << ' ' << o.position.z() + half_height << "\" euler=\"0 0 " << o.yaw
-             << "\">\n      <geom name=\"" << o.name << "\" ";
+             << '"' << (o.movable ? " mocap=\"true\"" : "") << ">\n      <geom name=\"" << o.name
+             << "\" ";
       switch (o.shape) {
         case SceneShape::box:
           bodies << "type=\"box\" size=\"" << o.size.x() / 2.0 << ' ' << o.size.y() / 2.0 << ' '
@@ -290,11 +320,29 @@ class MujocoRobot final : public Robot {
           bodies << "type=\"sphere\" size=\"" << o.size.x() << '"';
           break;
       }
-      bodies << " rgba=\"" << o.rgb.x() << ' ' << o.rgb.y() << ' ' << o.rgb.z() << " 1\"";
+      if (o.textured) {
+        const Eigen::Vector3d dark = 0.35 * o.rgb;
+        assets << "    <texture name=\"walkgen_" << o.name
+               << "\" type=\"cube\" builtin=\"flat\" mark=\"random\" random=\"0.5\" rgb1=\""
+               << o.rgb.x() << ' ' << o.rgb.y() << ' ' << o.rgb.z() << "\" markrgb=\"" << dark.x()
+               << ' ' << dark.y() << ' ' << dark.z() << "\" width=\"128\" height=\"128\"/>\n"
+               << "    <material name=\"walkgen_" << o.name << "\" texture=\"walkgen_" << o.name
+               << "\" texuniform=\"true\"/>\n";
+        bodies << " material=\"walkgen_" << o.name << '"';
+      } else {
+        bodies << " rgba=\"" << o.rgb.x() << ' ' << o.rgb.y() << ' ' << o.rgb.z() << " 1\"";
+      }
       if (!o.collides) bodies << " contype=\"0\" conaffinity=\"0\"";
       bodies << "/>\n    </body>\n";
     }
     xml.insert(end, bodies.str());
+    if (!assets.str().empty()) {  // an <asset> section of their own, first in the model
+      const std::size_t root = xml.find("<mujoco");
+      const std::size_t open_end = root == std::string::npos ? root : xml.find('>', root);
+      check_argument(open_end != std::string::npos, "MujocoRobot: model_path",
+                     "an MJCF with a <mujoco> element", "'" + path + "'");
+      xml.insert(open_end + 1, "\n  <asset>\n" + assets.str() + "  </asset>\n");
+    }
     // The VFS is large (MuJoCo 2.2: fixed arrays of file names): on the heap, once.
     auto vfs = std::make_unique<mjVFS>();
     mj_defaultVFS(vfs.get());

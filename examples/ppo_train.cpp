@@ -1,0 +1,350 @@
+// Thesis §11.2 (figures 11.16–11.19): trains and evaluates PPO agents (walkgen::TorchPpo).
+//
+//   ppo_train benchmark [options]   the benchmarking environment of §11.2.1
+//   ppo_train nmpc [options]        the NMPC environment of §11.2.2 (--obstacles K: beyond it)
+//
+// Training prints one line per epoch (epoch, mean reward, wins/losses, σ), writes
+// <out>/learning_<env>.csv, saves the policy as TorchScript (<out>/ppo_<env>.pt), then tests
+// it: benchmark: 10 runs of 10 000 steps of the policy mean (wins, losses); nmpc: 100 held-out
+// goals all around the robot (reached, failed, footsteps inside obstacles) and the
+// trajectories of four goals (figure 11.19) in <out>/trajectories_<env>.csv.
+// --policy FILE skips the training and tests a saved policy. --plot draws the PNGs through
+// python/plot_learning.py.
+//
+// Options: --epochs E --steps S (per epoch) --seed N --out DIR --envs K --threads T
+//          --obstacles K --policy FILE --test-runs R --test-goals G --plot --quiet
+
+#include <torch/torch.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "walkgen/torch/environment.hpp"
+#include "walkgen/torch/nmpc_environment.hpp"
+#include "walkgen/torch/parallel.hpp"
+#include "walkgen/torch/ppo.hpp"
+#include "walkgen/torch/training.hpp"
+
+namespace {
+
+struct Options {
+  std::string env;
+  int epochs = -1;
+  long steps = -1;
+  std::uint64_t seed = 1;
+  std::string out = ".";
+  int envs = 8;
+  int threads = 2;
+  int obstacles = 0;
+  std::string policy;
+  int test_runs = 10;
+  int test_goals = 100;
+  bool plot = false;
+  bool quiet = false;
+};
+
+[[noreturn]] void usage(const std::string& error) {
+  std::cerr << "ppo_train: " << error
+            << "\nusage: ppo_train benchmark|nmpc [--epochs E] [--steps S] [--seed N] [--out DIR]"
+               " [--envs K] [--threads T] [--obstacles K] [--policy FILE] [--test-runs R]"
+               " [--test-goals G] [--plot] [--quiet]\n";
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  if (argc < 2) usage("missing environment");
+  o.env = argv[1];
+  if (o.env != "benchmark" && o.env != "nmpc") usage("unknown environment " + o.env);
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--epochs")
+      o.epochs = std::stoi(value());
+    else if (a == "--steps")
+      o.steps = std::stol(value());
+    else if (a == "--seed")
+      o.seed = std::stoull(value());
+    else if (a == "--out")
+      o.out = value();
+    else if (a == "--envs")
+      o.envs = std::stoi(value());
+    else if (a == "--threads")
+      o.threads = std::stoi(value());
+    else if (a == "--obstacles")
+      o.obstacles = std::stoi(value());
+    else if (a == "--policy")
+      o.policy = value();
+    else if (a == "--test-runs")
+      o.test_runs = std::stoi(value());
+    else if (a == "--test-goals")
+      o.test_goals = std::stoi(value());
+    else if (a == "--plot")
+      o.plot = true;
+    else if (a == "--quiet")
+      o.quiet = true;
+    else
+      usage("unknown option " + a);
+  }
+  return o;
+}
+
+std::string env_name(const Options& o) {
+  return o.env == "nmpc" && o.obstacles > 0 ? "nmpc_obstacles" : o.env;
+}
+
+// Trains for o.epochs epochs of o.steps steps; writes the CSV log. With a `validate` score
+// (higher is better, e.g. test-mode wins on a validation environment), the policy of the best
+// epoch is kept (the thesis also kept its best network); otherwise the last one. Saves it.
+template <class Env>
+void train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, int rollout_steps,
+           walkgen::StepPool& pool, const Options& o, const std::string& policy_path,
+           const std::function<double()>& validate = nullptr) {
+  walkgen::PpoTrainer<Env> trainer(ppo, envs, rollout_steps, &pool);
+  const std::string csv = o.out + "/learning_" + env_name(o) + ".csv";
+  std::ofstream log(csv);
+  log << "epoch,steps,mean_reward,mean_return,episodes,wins,losses,truncations,std,seconds,"
+         "policy_loss,value_loss,entropy,approx_kl,clip_fraction\n";
+  double total = 0.0, best = -1e300;
+  int best_epoch = 0;
+  for (int e = 0; e < o.epochs; ++e) {
+    const walkgen::PpoEpoch ep = trainer.run_epoch(o.steps);
+    total += ep.seconds;
+    const double score = validate ? validate() : 0.0;
+    if (!validate || score >= best) {
+      best = score;
+      best_epoch = ep.epoch;
+      ppo.save(policy_path);
+    }
+    log << ep.epoch << ',' << ep.steps << ',' << ep.mean_reward << ',' << ep.mean_return << ','
+        << ep.episodes << ',' << ep.wins << ',' << ep.losses << ',' << ep.truncations << ','
+        << ep.std << ',' << ep.seconds << ',' << ep.update.policy_loss << ','
+        << ep.update.value_loss << ',' << ep.update.entropy << ',' << ep.update.approx_kl << ','
+        << ep.update.clip_fraction << '\n';
+    log.flush();
+    if (!o.quiet)
+      std::printf(
+          "epoch %3d/%d  mean reward %9.4f  return %9.2f  wins %4d  losses %3d  "
+          "timeouts %3d  std %.3f  %.1f s\n",
+          ep.epoch, o.epochs, ep.mean_reward, ep.mean_return, ep.wins, ep.losses, ep.truncations,
+          ep.std, ep.seconds);
+  }
+  std::printf("trained %s: %d epochs in %.1f s, log %s, policy of epoch %d saved to %s\n",
+              env_name(o).c_str(), o.epochs, total, csv.c_str(), best_epoch, policy_path.c_str());
+  ppo.load_parameters(policy_path);
+}
+
+int run_benchmark(const Options& o) {
+  // Thesis §11.2.1: actor and critic 16-32 ReLU, tanh mean, ε = 0.2, c1 = 0.5; 10 000 steps per
+  // epoch, an update every 4096 actions, minibatch 512, 8 epochs; Adam.
+  walkgen::PpoSettings s;
+  s.actor_hidden = {16, 32};
+  s.critic_hidden = {16, 32};
+  s.activation = walkgen::TorchActivation::relu;
+  s.learning_rate = 1e-3;
+  s.initial_std = 0.5;
+  s.entropy_coef = 0.0;
+  s.minibatch = 512;
+  s.epochs = 8;
+  s.gamma = 0.99;
+  s.seed = o.seed;
+  walkgen::PointGoalSettings env_settings;  // test mode: no step budget (the thesis)
+  walkgen::PointGoalSettings train_settings = env_settings;
+  train_settings.max_steps = 200;
+  const int epochs = o.epochs > 0 ? o.epochs : 50;
+  Options opt = o;
+  opt.epochs = epochs;
+  opt.steps = o.steps > 0 ? o.steps : 10000;
+  const int E = std::max(1, o.envs);
+  walkgen::TorchPpo ppo =
+      o.policy.empty() ? walkgen::TorchPpo(4, 2, s) : walkgen::TorchPpo::load(o.policy, s);
+  if (o.policy.empty()) {
+    std::vector<walkgen::PointGoalEnv> envs;
+    for (int e = 0; e < E; ++e) envs.emplace_back(train_settings, o.seed * 1000 + e);
+    walkgen::StepPool pool(1);  // the benchmark's step is cheaper than a thread hand-off
+    // Validation: test mode (policy mean) for 2000 steps on goals apart from the test's.
+    walkgen::PointGoalSettings validation_settings = env_settings;
+    validation_settings.max_steps = 200;
+    const auto validate = [&]() {
+      walkgen::PointGoalEnv env(validation_settings, 555);
+      const auto t = walkgen::evaluate_steps(ppo, env, 2000);
+      return double(t.wins) - 10.0 * t.losses - t.truncations;
+    };
+    train(ppo, envs, std::max(1, 4096 / E), pool, opt, o.out + "/ppo_benchmark.pt", validate);
+  }
+  // Test mode: the policy mean, R runs of 10 000 steps.
+  std::ofstream test(o.out + "/test_benchmark.csv");
+  test << "run,steps,wins,losses,mean_reward\n";
+  double wins = 0, wins_sq = 0;
+  int losses = 0;
+  for (int r = 0; r < o.test_runs; ++r) {
+    walkgen::PointGoalEnv env(env_settings, 7777 + r);
+    const auto t = walkgen::evaluate_steps(ppo, env, 10000);
+    test << r << ',' << t.steps << ',' << t.wins << ',' << t.losses << ',' << t.mean_reward << '\n';
+    wins += t.wins;
+    wins_sq += double(t.wins) * t.wins;
+    losses += t.losses;
+  }
+  const double mean = wins / o.test_runs;
+  const double sd = std::sqrt(std::max(0.0, wins_sq / o.test_runs - mean * mean));
+  std::printf("test mode (policy mean), %d runs of 10000 steps: %.1f +- %.1f wins, %d losses\n",
+              o.test_runs, mean, sd, losses);
+  // Trajectories of the test mode (figure 11.18): 300 steps.
+  std::ofstream traj(o.out + "/trajectories_benchmark.csv");
+  traj << "episode,step,agent_x,agent_y,goal_x,goal_y,end\n";
+  walkgen::PointGoalEnv env(env_settings, 4242);
+  int episode = 0;
+  float obs[4], act[2];
+  for (int k = 0; k < 300; ++k) {
+    env.observe(obs);
+    ppo.act(obs, 1, true, act);
+    const auto r = env.step(act);
+    traj << episode << ',' << k << ',' << env.agent().x() << ',' << env.agent().y() << ','
+         << env.goal().x() << ',' << env.goal().y() << ',' << walkgen::to_string(r.end) << '\n';
+    if (r.done()) {
+      env.reset();
+      ++episode;
+    }
+  }
+  return 0;
+}
+
+int run_nmpc(const Options& o) {
+  // Thesis §11.2.2: 64-64 tanh networks, ε = 0.2, c1 = 0.5, Adam; minibatches over a rollout.
+  walkgen::PpoSettings s;
+  s.actor_hidden = {64, 64};
+  s.critic_hidden = {64, 64};
+  s.activation = walkgen::TorchActivation::tanh;
+  s.learning_rate = 1e-3;
+  s.initial_std = 0.6;
+  s.entropy_coef = 0.0;
+  s.minibatch = 256;
+  s.epochs = 5;
+  s.gamma = 0.99;
+  s.lambda = 0.95;
+  s.reward_scale = 1e-3;  // returns of ~10⁴ (weights 2·10³, 6·10³) to ~10 for the critic
+  s.seed = o.seed;
+  walkgen::NmpcGoalSettings env_settings;
+  env_settings.obstacles = o.obstacles;
+  if (o.obstacles > 0) {
+    env_settings.goal_min_distance = 1.0;
+    env_settings.goal_max_distance = 2.0;
+  }
+  Options opt = o;
+  opt.epochs = o.epochs > 0 ? o.epochs : 30;
+  opt.steps = o.steps > 0 ? o.steps : 8192;
+  const int E = std::max(1, o.envs);
+  using Env = walkgen::NmpcGoalEnv<16>;
+  walkgen::StepPool pool(std::max(1, o.threads));
+  const int obs_size = 2 + 3 * o.obstacles;
+  walkgen::TorchPpo ppo =
+      o.policy.empty() ? walkgen::TorchPpo(obs_size, 2, s) : walkgen::TorchPpo::load(o.policy, s);
+  if (o.policy.empty()) {
+    std::vector<Env> envs;
+    envs.reserve(E);
+    for (int e = 0; e < E; ++e) envs.emplace_back(env_settings, o.seed * 1000 + e);
+    train(ppo, envs, 256, pool, opt, o.out + "/ppo_" + env_name(o) + ".pt");
+  }
+  // Held-out goals: drawn by an environment seeded apart from the training ones.
+  std::vector<Env> envs;
+  envs.reserve(E);
+  for (int e = 0; e < E; ++e) envs.emplace_back(env_settings, 900000 + e);
+  std::vector<walkgen::NmpcGoalTask> tasks;
+  for (int g = 0; g < o.test_goals; ++g) tasks.push_back(envs[0].sample_task());
+  std::vector<double> clearance(tasks.size(), 0.0);
+  const auto results = walkgen::evaluate_tasks<Env, walkgen::NmpcGoalTask>(
+      ppo, envs, tasks, &pool,
+      [&](std::size_t i, const Env& env) { clearance[i] = env.min_obstacle_clearance(); });
+  int reached = 0, failed = 0, inside = 0, behind = 0, behind_reached = 0;
+  std::ofstream test(o.out + "/test_" + env_name(o) + ".csv");
+  test << "goal,goal_x,goal_y,end,steps,reward,min_clearance\n";
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const auto& r = results[i];
+    const bool in = o.obstacles > 0 && clearance[i] < 0.0;
+    const bool ok = r.end == walkgen::EpisodeEnd::success && !in;
+    reached += ok;
+    failed += r.end == walkgen::EpisodeEnd::failure;
+    inside += in;
+    if (tasks[i].goal.x() < 0.0) {
+      ++behind;
+      behind_reached += ok;
+    }
+    test << i << ',' << tasks[i].goal.x() << ',' << tasks[i].goal.y() << ','
+         << walkgen::to_string(r.end) << ',' << r.steps << ',' << r.reward << ','
+         << (o.obstacles > 0 ? clearance[i] : 0.0) << '\n';
+  }
+  std::printf(
+      "test mode (policy mean) on %d held-out goals: %d reached (%d of %d behind the "
+      "robot), %d QP failures, %d with a footstep inside an obstacle\n",
+      o.test_goals, reached, behind_reached, behind, failed, inside);
+  // Figure 11.19: four goals, CoM paths and footsteps.
+  std::ofstream traj(o.out + "/trajectories_" + env_name(o) + ".csv");
+  traj << "case,tick,com_x,com_y,heading,foot_x,foot_y,foot_q,goal_x,goal_y,v_x,omega\n";
+  std::ofstream obst(o.out + "/obstacles_" + env_name(o) + ".csv");
+  obst << "case,x,y,radius,margin\n";
+  const double goals[4][2] = {{1.5, 0.0}, {0.5, 1.2}, {-1.2, 0.6}, {-1.0, -1.0}};
+  Env env(env_settings, 31337);
+  for (int c = 0; c < 4; ++c) {
+    walkgen::NmpcGoalTask task = env.sample_task();
+    task.goal = Eigen::Vector2d(goals[c][0], goals[c][1]);
+    for (auto& ob : task.obstacles) {  // in the way, halfway
+      ob.x = 0.5 * task.goal.x() + (c % 2 == 0 ? 0.05 : -0.05);
+      ob.y = 0.5 * task.goal.y();
+      ob.radius = 0.15;
+      obst << c << ',' << ob.x << ',' << ob.y << ',' << ob.radius << ',' << ob.margin << '\n';
+    }
+    env.reset(task);
+    float obs[64], act[2];
+    for (;;) {
+      env.observe(obs);
+      ppo.act(obs, 1, true, act);
+      const Eigen::Vector3d cmd = env.command_of(act);
+      const auto r = env.step(act);
+      const auto& st = env.mpc().state();
+      traj << c << ',' << env.mpc().state().time << ',' << st.com_x[0] << ',' << st.com_y[0] << ','
+           << st.heading() << ',' << st.support.x << ',' << st.support.y << ',' << st.support.q
+           << ',' << task.goal.x() << ',' << task.goal.y() << ',' << cmd[0] << ',' << cmd[2]
+           << '\n';
+      if (r.done()) {
+        std::printf("  trajectory %d: goal (%.1f, %.1f) %s after %.1f s\n", c, task.goal.x(),
+                    task.goal.y(), walkgen::to_string(r.end), st.time);
+        break;
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines also when piped to a file
+  torch::set_num_threads(1);  // small networks: intra-op threads cost more than they give
+  int rc = 0;
+  try {
+    rc = o.env == "benchmark" ? run_benchmark(o) : run_nmpc(o);
+  } catch (const std::exception& e) {
+    std::cerr << "ppo_train: " << e.what() << '\n';
+    return 1;
+  }
+  if (o.plot) {
+    const std::string cmd = "/usr/bin/python3 \"" WALKGEN_SOURCE_DIR
+                            "/python/plot_learning.py\" \"" +
+                            o.out + "\" " + env_name(o);
+    if (std::system(cmd.c_str()) != 0) {
+      std::cerr << "ppo_train: plotting failed: " << cmd << '\n';
+      return 1;
+    }
+  }
+  return rc;
+}

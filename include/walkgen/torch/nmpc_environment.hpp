@@ -1,0 +1,281 @@
+#pragma once
+/// @file
+/// The fusion of the NMPC with reinforcement learning (thesis §11.2.2, figure 11.19): a policy
+/// steers walkgen::WalkingMpc towards a goal by velocity commands (v_x, ω_z), and, beyond the
+/// thesis (its stated limitation), around circular obstacles that the NMPC's obstacle
+/// constraints (eq. 2.79–2.82) keep the footsteps out of.
+///
+/// Depends on the core only (Eigen); the learning itself is in walkgen/torch/ppo.hpp.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/mpc/settings.hpp"
+#include "walkgen/mpc/walking_mpc.hpp"
+#include "walkgen/torch/environment.hpp"
+
+namespace walkgen {
+
+/// Settings of the NMPC goal environment. Rewards (thesis §11.2.2):
+/// r_t = w_frontal r_frontal + w_goal r_goal − w_time r_time, + success_reward on success.
+struct NmpcGoalSettings {
+  /// The walking generator's settings. HRP-2 (the default, thesis §9.1) walks up to
+  /// 0.35 m/s and turns 0.3 rad/s at T = 0.1 s; Heicub's preset (0.034 m/s, T = 0.4 s,
+  /// 3.2 s steps) would need 10× the simulated time for the same goals (docs/learning.md).
+  WalkingSettings<double> walking = hrp2_settings<double>();
+  int ticks_per_step = 2;          ///< NMPC ticks (of walking.t) per environment step
+  int max_steps = 150;             ///< step budget per episode (30 s at the defaults)
+  double goal_min_distance = 0.5;  ///< [m] goals are drawn at this distance or more …
+  double goal_max_distance = 2.0;  ///< [m] … up to this, at any bearing (behind included)
+  double success_radius = 0.2;     ///< [m] CoM closer than this to the goal: success
+  /// Fraction of walking.max_command that an action of ±1 commands. Below 1 so that the
+  /// command is always accepted by WalkingMpc::set_command (which rejects |c| > max).
+  double command_fraction = 0.999;
+  double frontal_weight = 2e3;    ///< w_frontal (thesis: 2·10³)
+  double goal_weight = 6e3;       ///< w_goal (thesis: 6·10³)
+  double time_weight = 0.1;       ///< w_time (thesis: 10⁻¹), r_time = episode time [s]
+  double success_reward = 100.0;  ///< thesis: 100
+  /// On a failed QP (walkgen's choice; the thesis has none). Comparable to the progress reward
+  /// of a whole episode (w_goal · 2 m): a smaller penalty made walking into an obstacle until
+  /// the NMPC gives up pay almost as well as going around it.
+  double failure_reward = -1e4;
+  // --- Obstacles (beyond the thesis) -----------------------------------------------------------
+  int obstacles = 0;  ///< circular obstacles per episode, each in the state
+  double obstacle_min_radius = 0.1, obstacle_max_radius = 0.25;  ///< [m] radius R, uniform
+  double obstacle_margin = 0.15;  ///< [m] margin m of eq. 2.79: footsteps keep R + m
+  /// Where an obstacle is drawn: at a fraction in [0.3, 0.7] of the way to the goal, moved
+  /// sideways by up to this [m], so that it is in the way.
+  double obstacle_lateral = 0.2;
+  double obstacle_clearance = 0.15;  ///< [m] start and goal stay this far beyond R + m
+};
+
+/// One goal (and its obstacles) of an episode, world frame; the robot starts at the
+/// preset's initial state, facing +x.
+struct NmpcGoalTask {
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();
+  std::vector<CircleObstacle<double>> obstacles;
+};
+
+/// Environment of thesis §11.2.2. State: the goal in the robot frame,
+/// g_a = R_z(θ)ᵀ (g_w − a_w) with a_w the CoM and θ the heading, then per obstacle its centre
+/// in the robot frame and R + m (3 numbers). Action: (v_x, ω_z) ∈ [−1, 1]² (clipped) times
+/// command_fraction · max_command; one step is ticks_per_step NMPC ticks (solve + advance).
+/// The episode ends on success, on the step budget (truncated) or on a failed QP (failure).
+/// Rewards: r_goal = d_{t−1} − d_t (distance of CoM to goal), r_frontal = ĝ_{a,t}[0] −
+/// ĝ_{a,t−1}[0] with ĝ_a the unit direction to the goal in the robot frame (the x axis turns
+/// towards the goal; the thesis's formula for it is garbled), r_time = the episode's time.
+/// @tparam N preview samples of the NMPC (walking.n must equal it)
+template <int N = 16>
+class NmpcGoalEnv {
+ public:
+  using Mpc = WalkingMpc<double, N>;
+  static constexpr int kActionSize = 2;
+
+  /// @throws walkgen::invalid_argument on invalid settings (also those of the NMPC).
+  explicit NmpcGoalEnv(const NmpcGoalSettings& settings = {}, std::uint64_t seed = 0)
+      : s_(checked(settings)), mpc_(s_.walking, s_.obstacles), rng_(seed) {
+    obstacles_.reserve(static_cast<std::size_t>(s_.obstacles));
+    reset();
+  }
+
+  int observation_size() const { return 2 + 3 * s_.obstacles; }
+  int action_size() const { return kActionSize; }
+
+  /// Draws a task: a goal at a uniform bearing in [−π, π) and a distance uniform in
+  /// [goal_min_distance, goal_max_distance], and the obstacles in its way.
+  NmpcGoalTask sample_task() {
+    constexpr double kPi = 3.14159265358979323846;
+    std::uniform_real_distribution<double> bearing(-kPi, kPi);
+    std::uniform_real_distribution<double> dist(s_.goal_min_distance, s_.goal_max_distance);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Eigen::Vector2d start = start_position();
+    NmpcGoalTask task;
+    for (;;) {
+      const double b = bearing(rng_), d = dist(rng_);
+      task.goal = start + d * Eigen::Vector2d(std::cos(b), std::sin(b));
+      task.obstacles.clear();
+      for (int k = 0; k < s_.obstacles; ++k) {
+        CircleObstacle<double> o;
+        o.radius =
+            s_.obstacle_min_radius + (s_.obstacle_max_radius - s_.obstacle_min_radius) * unit(rng_);
+        o.margin = s_.obstacle_margin;
+        const double f = 0.3 + 0.4 * unit(rng_);
+        const double lateral = s_.obstacle_lateral * (2.0 * unit(rng_) - 1.0);
+        const Eigen::Vector2d along = task.goal - start;
+        const Eigen::Vector2d normal(-along.y() / along.norm(), along.x() / along.norm());
+        const Eigen::Vector2d c = start + f * along + lateral * normal;
+        o.x = c.x();
+        o.y = c.y();
+        task.obstacles.push_back(o);
+      }
+      if (task_valid(task)) return task;
+    }
+  }
+
+  /// Restarts with a new random task.
+  void reset() { reset(sample_task()); }
+  /// Restarts the NMPC at its initial state (standing, facing +x) with the given task.
+  /// @throws walkgen::invalid_argument on a wrong number of obstacles or invalid ones.
+  void reset(const NmpcGoalTask& task) {
+    check_argument(static_cast<int>(task.obstacles.size()) == s_.obstacles,
+                   "NmpcGoalEnv::reset: obstacles", std::to_string(s_.obstacles) + " obstacles",
+                   task.obstacles.size(), "NmpcGoalSettings::obstacles sets the state's size");
+    check_argument(task.goal.allFinite(), "NmpcGoalEnv::reset: goal", "finite", "NaN or inf");
+    obstacles_.assign(task.obstacles.begin(), task.obstacles.end());
+    goal_ = task.goal;
+    mpc_.set_obstacles(obstacles_);
+    mpc_.reset(Mpc::initial_state(s_.walking));
+    mpc_.set_command(Eigen::Vector3d::Zero());
+    steps_ = 0;
+    failed_ = false;
+    min_clearance_ = std::numeric_limits<double>::infinity();
+    check_footsteps();
+    previous_frontal_ = unit_goal_robot().x();
+    previous_distance_ = distance();
+  }
+
+  /// Writes the state (see the class comment) to obs[0..observation_size()).
+  void observe(float* obs) const {
+    const Eigen::Vector2d g = to_robot(goal_);
+    obs[0] = static_cast<float>(g.x());
+    obs[1] = static_cast<float>(g.y());
+    for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+      const auto& o = obstacles_[k];
+      const Eigen::Vector2d c = to_robot(Eigen::Vector2d(o.x, o.y));
+      obs[2 + 3 * k] = static_cast<float>(c.x());
+      obs[3 + 3 * k] = static_cast<float>(c.y());
+      obs[4 + 3 * k] = static_cast<float>(o.radius + o.margin);
+    }
+  }
+
+  /// The command that an action maps to: (a_0 v_max, 0, a_1 ω_max) · command_fraction.
+  Eigen::Vector3d command_of(const float* action) const {
+    auto clip = [](float a) { return std::isfinite(a) ? std::clamp<double>(a, -1.0, 1.0) : 0.0; };
+    const auto& m = s_.walking.max_command;
+    return {clip(action[0]) * m[0] * s_.command_fraction, 0.0,
+            clip(action[1]) * m[2] * s_.command_fraction};
+  }
+
+  /// Sends the action's command and runs ticks_per_step NMPC ticks.
+  EnvStep step(const float* action) {
+    EnvStep r;
+    mpc_.set_command(command_of(action));  // always accepted: |c| < max_command
+    for (int k = 0; k < s_.ticks_per_step; ++k) {
+      if (mpc_.solve().status != MpcStatus::solved) {
+        failed_ = true;
+        break;
+      }
+      mpc_.advance();
+      ++ticks_;
+      check_footsteps();
+    }
+    ++steps_;
+    const double d = distance();
+    const double frontal = unit_goal_robot().x();
+    const double time = mpc_.state().time;
+    r.reward = s_.goal_weight * (previous_distance_ - d) +
+               s_.frontal_weight * (frontal - previous_frontal_) - s_.time_weight * time;
+    previous_distance_ = d;
+    previous_frontal_ = frontal;
+    if (failed_) {
+      r.reward += s_.failure_reward;
+      r.end = EpisodeEnd::failure;
+    } else if (d < s_.success_radius) {
+      r.reward += s_.success_reward;
+      r.end = EpisodeEnd::success;
+    } else if (steps_ >= s_.max_steps) {
+      r.end = EpisodeEnd::truncated;
+    }
+    return r;
+  }
+
+  /// Robot position: the CoM (state().com_x[0], com_y[0]), world frame [m].
+  Eigen::Vector2d position() const { return {mpc_.state().com_x[0], mpc_.state().com_y[0]}; }
+  double heading() const { return mpc_.state().heading(); }
+  double distance() const { return (goal_ - position()).norm(); }
+  const Eigen::Vector2d& goal() const { return goal_; }
+  const std::vector<CircleObstacle<double>>& obstacles() const { return obstacles_; }
+  /// Smallest distance of a footstep (support foot, every tick) to an obstacle's circle,
+  /// ‖F − o‖ − R, over the episode [m]: negative means a footstep inside an obstacle.
+  double min_obstacle_clearance() const { return min_clearance_; }
+  int steps() const { return steps_; }
+  long ticks() const { return ticks_; }  ///< NMPC ticks since construction
+  const Mpc& mpc() const { return mpc_; }
+  const NmpcGoalSettings& settings() const { return s_; }
+
+ private:
+  static const NmpcGoalSettings& checked(const NmpcGoalSettings& s) {
+    validate(s.walking);
+    check_argument(s.walking.n == N || N == Eigen::Dynamic, "NmpcGoalSettings.walking.n",
+                   "the environment's horizon N = " + std::to_string(N), s.walking.n);
+    check_argument(s.ticks_per_step >= 1, "NmpcGoalSettings.ticks_per_step", "at least 1",
+                   s.ticks_per_step);
+    check_argument(s.max_steps >= 1, "NmpcGoalSettings.max_steps", "at least 1", s.max_steps);
+    check_positive("NmpcGoalSettings.goal_min_distance", s.goal_min_distance);
+    check_argument(s.goal_max_distance >= s.goal_min_distance, "NmpcGoalSettings.goal_max_distance",
+                   "at least goal_min_distance", s.goal_max_distance);
+    check_positive("NmpcGoalSettings.success_radius", s.success_radius);
+    check_argument(s.command_fraction > 0.0 && s.command_fraction < 1.0,
+                   "NmpcGoalSettings.command_fraction", "a fraction in (0, 1)", s.command_fraction);
+    check_argument(s.obstacles >= 0, "NmpcGoalSettings.obstacles", "a count >= 0", s.obstacles);
+    check_positive("NmpcGoalSettings.obstacle_min_radius", s.obstacle_min_radius);
+    check_argument(s.obstacle_max_radius >= s.obstacle_min_radius,
+                   "NmpcGoalSettings.obstacle_max_radius", "at least obstacle_min_radius",
+                   s.obstacle_max_radius);
+    check_non_negative("NmpcGoalSettings.obstacle_margin", s.obstacle_margin);
+    return s;
+  }
+
+  Eigen::Vector2d start_position() const { return {s_.walking.com_x[0], s_.walking.com_y[0]}; }
+
+  bool task_valid(const NmpcGoalTask& task) const {
+    const Eigen::Vector2d start = start_position();
+    for (const auto& o : task.obstacles) {
+      const Eigen::Vector2d c(o.x, o.y);
+      const double keep = o.radius + o.margin + s_.obstacle_clearance;
+      // the start (both feet around the CoM) and the goal's success disc stay clear
+      if ((c - start).norm() < keep + s_.walking.foot_distance) return false;
+      if ((c - task.goal).norm() < keep + s_.success_radius) return false;
+    }
+    return true;
+  }
+
+  Eigen::Vector2d to_robot(const Eigen::Vector2d& p_W) const {
+    const double q = heading(), c = std::cos(q), s = std::sin(q);
+    const Eigen::Vector2d d = p_W - position();
+    return {c * d.x() + s * d.y(), -s * d.x() + c * d.y()};
+  }
+  Eigen::Vector2d unit_goal_robot() const {
+    const Eigen::Vector2d g = to_robot(goal_);
+    const double n = g.norm();
+    return n > 1e-9 ? Eigen::Vector2d(g / n) : Eigen::Vector2d(1.0, 0.0);
+  }
+  void check_footsteps() {
+    const auto& st = mpc_.state();
+    for (const auto& o : obstacles_) {
+      for (const auto* f : {&st.support, &st.swing_origin}) {
+        const double c = std::hypot(f->x - o.x, f->y - o.y) - o.radius;
+        min_clearance_ = std::min(min_clearance_, c);
+      }
+    }
+  }
+
+  NmpcGoalSettings s_;
+  Mpc mpc_;
+  std::mt19937_64 rng_;
+  std::vector<CircleObstacle<double>> obstacles_;
+  Eigen::Vector2d goal_ = Eigen::Vector2d::Zero();
+  int steps_ = 0;
+  long ticks_ = 0;
+  bool failed_ = false;
+  double previous_distance_ = 0.0, previous_frontal_ = 0.0;
+  double min_clearance_ = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace walkgen

@@ -1,0 +1,440 @@
+#pragma once
+/// @file
+/// Proximal policy optimisation, actor–critic style (thesis §4.2, algorithm 1), in libtorch:
+/// a Gaussian policy N(μ_θ(s), σ²) with a tanh-bounded mean and a learned, state-independent
+/// standard deviation, a separate critic V_θ(s), generalised advantage estimation (eq. 4.15),
+/// the clipped surrogate (eq. 4.16) with value loss and entropy bonus (eq. 4.17, entropy by
+/// eq. 11.2), Adam over shuffled minibatches for several epochs per update. Policies are saved
+/// as TorchScript modules that torch.jit.load() reads in Python and torch::jit::load() in C++.
+///
+/// Use (the trainer of walkgen/torch/training.hpp runs the environments):
+/// @code
+///   walkgen::PpoSettings s;                      // seeds, sizes, γ, λ, ε, c1, c2, Adam
+///   walkgen::TorchPpo ppo(obs_size, act_size, s);
+///   ppo.act(obs, batch, /*deterministic=*/false, action, log_prob, value);   // rollouts
+///   walkgen::PpoUpdateResult u = ppo.update(rollout);                         // algorithm 1
+///   ppo.save("policy.pt");                                       // TorchScript
+///   walkgen::TorchPpo again = walkgen::TorchPpo::load("policy.pt");
+/// @endcode
+/// Type names carry the backend (DESIGN.md convention 12); no nested namespace torch.
+
+#include <torch/script.h>
+#include <torch/torch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+
+namespace walkgen {
+
+/// Activation of the hidden layers (the output of the policy mean is always tanh).
+enum class TorchActivation : std::int64_t {
+  relu = 0,  ///< thesis §11.2.1 (benchmark environment)
+  tanh = 1,  ///< thesis §11.2.2 (NMPC environment)
+};
+
+/// PPO hyper-parameters. Defaults: the common PPO choices; thesis values per environment are
+/// in the examples (examples/ppo_train.cpp) and docs/learning.md.
+struct PpoSettings {
+  std::vector<std::int64_t> actor_hidden{64, 64};   ///< hidden layer sizes of μ_θ
+  std::vector<std::int64_t> critic_hidden{64, 64};  ///< hidden layer sizes of V_θ
+  TorchActivation activation = TorchActivation::tanh;
+  double initial_std = 0.5;     ///< σ at the start (the policy's exploration)
+  double learning_rate = 3e-4;  ///< Adam's step size
+  double gamma = 0.99;          ///< discount γ (eq. 4.15)
+  double lambda = 0.95;         ///< GAE λ (eq. 4.15)
+  double clip = 0.2;            ///< ε of the clipped surrogate (eq. 4.16)
+  double value_coef = 0.5;      ///< c1 of eq. 4.17
+  double entropy_coef = 0.0;    ///< c2 of eq. 4.17
+  int epochs = 8;               ///< K: passes over a rollout per update (algorithm 1)
+  int minibatch = 512;          ///< M: samples per gradient step
+  double max_grad_norm = 0.5;   ///< global gradient norm clip; ≤ 0 disables it
+  /// Early stop of an update's epochs once the mean KL estimate between the rollout's policy
+  /// and the current one exceeds this (a guard against the collapse of a too large step);
+  /// ≤ 0 disables it.
+  double target_kl = 0.02;
+  double reward_scale = 1.0;         ///< rewards are multiplied by this before GAE (value scale)
+  bool normalize_advantages = true;  ///< advantages to zero mean, unit std per update
+  std::uint64_t seed = 0;            ///< torch::manual_seed (weights, sampling, shuffling)
+};
+
+/// One update's statistics (means over its minibatches).
+struct PpoUpdateResult {
+  double policy_loss = 0.0;    ///< −L^CLIP
+  double value_loss = 0.0;     ///< (V_θ(s) − V^target)²
+  double entropy = 0.0;        ///< S[π_θ] (eq. 11.2, summed over action dimensions)
+  double approx_kl = 0.0;      ///< KL(π_old ‖ π_θ) estimate, mean of (ρ − 1) − log ρ
+  double clip_fraction = 0.0;  ///< share of samples with |ρ − 1| > ε
+  double std = 0.0;            ///< mean σ after the update
+};
+
+/// A rollout of `steps` vectorised steps of `envs` environments (time-major: index t·envs + e).
+/// values has (steps + 1)·envs entries: the last row is V(s_T), the bootstrap. done marks the
+/// last step of an episode (a truncated episode's bootstrap is added to its reward by the trainer).
+struct PpoRollout {
+  int steps = 0, envs = 0, observation_size = 0, action_size = 0;
+  std::vector<float> observations, actions, log_probs, values, rewards, dones;
+
+  void resize(int steps_, int envs_, int obs, int act) {
+    steps = steps_;
+    envs = envs_;
+    observation_size = obs;
+    action_size = act;
+    const std::size_t n = static_cast<std::size_t>(steps) * static_cast<std::size_t>(envs);
+    observations.assign(n * static_cast<std::size_t>(obs), 0.0f);
+    actions.assign(n * static_cast<std::size_t>(act), 0.0f);
+    log_probs.assign(n, 0.0f);
+    values.assign(n + static_cast<std::size_t>(envs), 0.0f);
+    rewards.assign(n, 0.0f);
+    dones.assign(n, 0.0f);
+  }
+};
+
+/// Generalised advantage estimation (eq. 4.15) with δ_t = r_t + γ V(s_{t+1})(1 − done_t) − V(s_t):
+/// Â_t = δ_t + γλ(1 − done_t) Â_{t+1}; returns R_t = Â_t + V(s_t) are the critic's targets.
+/// rewards, dones: steps·envs; values: (steps + 1)·envs; outputs steps·envs each.
+inline void generalized_advantages(const std::vector<float>& rewards,
+                                   const std::vector<float>& values,
+                                   const std::vector<float>& dones, int steps, int envs,
+                                   double gamma, double lambda, std::vector<float>& advantages,
+                                   std::vector<float>& returns) {
+  const std::size_t n = static_cast<std::size_t>(steps) * static_cast<std::size_t>(envs);
+  check_argument(rewards.size() == n && dones.size() == n &&
+                     values.size() == n + static_cast<std::size_t>(envs),
+                 "generalized_advantages",
+                 "rewards, dones of steps*envs and values of "
+                 "(steps+1)*envs entries",
+                 "other sizes");
+  advantages.assign(n, 0.0f);
+  returns.assign(n, 0.0f);
+  for (int e = 0; e < envs; ++e) {
+    double next_advantage = 0.0;
+    for (int t = steps - 1; t >= 0; --t) {
+      const std::size_t i = static_cast<std::size_t>(t) * envs + e;
+      const double not_done = 1.0 - dones[i];
+      const double delta = rewards[i] + gamma * values[i + envs] * not_done - values[i];
+      next_advantage = delta + gamma * lambda * not_done * next_advantage;
+      advantages[i] = static_cast<float>(next_advantage);
+      returns[i] = static_cast<float>(next_advantage + values[i]);
+    }
+  }
+}
+
+/// Actor and critic: μ_θ(s) = tanh(MLP(s)), σ = exp(log_std), V_θ(s) = MLP(s).
+class TorchActorCriticImpl : public torch::nn::Module {
+ public:
+  TorchActorCriticImpl(std::int64_t observation_size, std::int64_t action_size,
+                       const PpoSettings& s)
+      : activation_(s.activation) {
+    std::int64_t in = observation_size;
+    for (std::size_t i = 0; i < s.actor_hidden.size(); ++i) {
+      actor_.push_back(
+          register_module("actor" + std::to_string(i), torch::nn::Linear(in, s.actor_hidden[i])));
+      in = s.actor_hidden[i];
+    }
+    actor_.push_back(register_module("actor" + std::to_string(s.actor_hidden.size()),
+                                     torch::nn::Linear(in, action_size)));
+    in = observation_size;
+    for (std::size_t i = 0; i < s.critic_hidden.size(); ++i) {
+      critic_.push_back(
+          register_module("critic" + std::to_string(i), torch::nn::Linear(in, s.critic_hidden[i])));
+      in = s.critic_hidden[i];
+    }
+    critic_.push_back(register_module("critic" + std::to_string(s.critic_hidden.size()),
+                                      torch::nn::Linear(in, 1)));
+    {  // a small last actor layer: the policy starts near μ = 0 for every state
+      torch::NoGradGuard no_grad;
+      actor_.back()->weight.mul_(0.01);
+      actor_.back()->bias.zero_();
+    }
+    log_std_ = register_parameter(
+        "log_std", torch::full({action_size}, std::log(s.initial_std), torch::kFloat32));
+  }
+
+  /// Policy mean μ_θ(s) ∈ (−1, 1)^A, obs [B, O] → [B, A].
+  torch::Tensor mean(const torch::Tensor& obs) { return torch::tanh(mlp(actor_, obs)); }
+  /// Critic V_θ(s), obs [B, O] → [B].
+  torch::Tensor value(const torch::Tensor& obs) { return mlp(critic_, obs).squeeze(-1); }
+  const torch::Tensor& log_std() const { return log_std_; }
+  /// log π_θ(a | s) of the Gaussian, summed over action dimensions → [B].
+  torch::Tensor log_prob(const torch::Tensor& mean, const torch::Tensor& action) const {
+    const torch::Tensor var = torch::exp(2.0 * log_std_);
+    return (-(action - mean).pow(2) / (2.0 * var) - log_std_ - 0.5 * std::log(2.0 * M_PI)).sum(-1);
+  }
+  /// S[π_θ] = Σ_dims 0.5 + 0.5 log(2π) + log σ (eq. 11.2).
+  torch::Tensor entropy() const { return (0.5 + 0.5 * std::log(2.0 * M_PI) + log_std_).sum(); }
+  TorchActivation activation() const { return activation_; }
+
+ private:
+  torch::Tensor mlp(std::vector<torch::nn::Linear>& layers, torch::Tensor x) {
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      x = layers[i]->forward(x);
+      if (i + 1 < layers.size())
+        x = activation_ == TorchActivation::relu ? torch::relu(x) : torch::tanh(x);
+    }
+    return x;
+  }
+  TorchActivation activation_;
+  std::vector<torch::nn::Linear> actor_, critic_;
+  torch::Tensor log_std_;
+};
+TORCH_MODULE(TorchActorCritic);
+
+/// PPO: acting, updating (algorithm 1), saving and loading the policy.
+class TorchPpo {
+ public:
+  /// Seeds torch's global generator with settings.seed, then builds the networks and Adam.
+  /// @throws walkgen::invalid_argument on non-positive sizes or hyper-parameters out of range.
+  TorchPpo(int observation_size, int action_size, const PpoSettings& settings = {})
+      : s_(checked(settings, observation_size, action_size)),
+        obs_(observation_size),
+        act_(action_size),
+        model_((torch::manual_seed(settings.seed),
+                TorchActorCritic(observation_size, action_size, settings))),
+        optimizer_(model_->parameters(), torch::optim::AdamOptions(settings.learning_rate)) {}
+
+  int observation_size() const { return obs_; }
+  int action_size() const { return act_; }
+  const PpoSettings& settings() const { return s_; }
+  TorchActorCritic& model() { return model_; }
+  /// Mean σ of the policy.
+  double std() const { return torch::exp(model_->log_std()).mean().item<double>(); }
+
+  /// Actions for a batch of observations (obs: batch × O, row-major): sampled from π_θ, or
+  /// the mean μ_θ(s) when deterministic (test mode). log_prob and value may be null.
+  void act(const float* obs, int batch, bool deterministic, float* action,
+           float* log_prob = nullptr, float* value = nullptr) {
+    torch::NoGradGuard no_grad;
+    const torch::Tensor o =
+        torch::from_blob(const_cast<float*>(obs), {batch, obs_}, torch::kFloat32);
+    const torch::Tensor mu = model_->mean(o);
+    torch::Tensor a = mu;
+    if (!deterministic) a = mu + torch::exp(model_->log_std()) * torch::randn_like(mu);
+    a = a.contiguous();
+    std::memcpy(action, a.data_ptr<float>(),
+                sizeof(float) * static_cast<std::size_t>(batch * act_));
+    if (log_prob != nullptr) {
+      const torch::Tensor lp = model_->log_prob(mu, a).contiguous();
+      std::memcpy(log_prob, lp.data_ptr<float>(), sizeof(float) * static_cast<std::size_t>(batch));
+    }
+    if (value != nullptr) values(obs, batch, value);
+  }
+  /// Critic values V_θ(s) for a batch of observations.
+  void values(const float* obs, int batch, float* value) {
+    torch::NoGradGuard no_grad;
+    const torch::Tensor o =
+        torch::from_blob(const_cast<float*>(obs), {batch, obs_}, torch::kFloat32);
+    const torch::Tensor v = model_->value(o).contiguous();
+    std::memcpy(value, v.data_ptr<float>(), sizeof(float) * static_cast<std::size_t>(batch));
+  }
+
+  /// One PPO update on a rollout (algorithm 1): GAE, then `epochs` passes over shuffled
+  /// minibatches of L = −L^CLIP + c1 L^VF − c2 S (eq. 4.16–4.17) with Adam.
+  /// @throws walkgen::invalid_argument if the rollout's sizes do not match the policy.
+  PpoUpdateResult update(const PpoRollout& r) {
+    check_argument(r.observation_size == obs_ && r.action_size == act_ && r.steps > 0 && r.envs > 0,
+                   "TorchPpo::update", "a rollout of this policy's observation/action sizes",
+                   "other sizes or an empty rollout");
+    std::vector<float> rewards(r.rewards);
+    for (auto& x : rewards) x = static_cast<float>(x * s_.reward_scale);
+    std::vector<float> adv, ret;
+    generalized_advantages(rewards, r.values, r.dones, r.steps, r.envs, s_.gamma, s_.lambda, adv,
+                           ret);
+    const std::int64_t n = static_cast<std::int64_t>(adv.size());
+    auto tensor = [](const std::vector<float>& v, std::vector<std::int64_t> shape) {
+      return torch::from_blob(const_cast<float*>(v.data()), shape, torch::kFloat32).clone();
+    };
+    const torch::Tensor obs = tensor(r.observations, {n, obs_});
+    const torch::Tensor act = tensor(r.actions, {n, act_});
+    const torch::Tensor old_log_prob = tensor(r.log_probs, {n});
+    torch::Tensor advantage = tensor(adv, {n});
+    const torch::Tensor target = tensor(ret, {n});
+    if (s_.normalize_advantages && n > 1)
+      advantage = (advantage - advantage.mean()) / (advantage.std() + 1e-8);
+
+    PpoUpdateResult out;
+    int batches = 0;
+    bool stop = false;
+    for (int epoch = 0; epoch < s_.epochs && !stop; ++epoch) {
+      const torch::Tensor perm = torch::randperm(n, torch::kLong);
+      for (std::int64_t start = 0; start < n; start += s_.minibatch) {
+        const torch::Tensor idx =
+            perm.slice(0, start, std::min<std::int64_t>(start + s_.minibatch, n));
+        const torch::Tensor o = obs.index_select(0, idx);
+        const torch::Tensor a = act.index_select(0, idx);
+        const torch::Tensor A = advantage.index_select(0, idx);
+        const torch::Tensor lp = model_->log_prob(model_->mean(o), a);
+        const torch::Tensor log_ratio = lp - old_log_prob.index_select(0, idx);
+        const torch::Tensor ratio = torch::exp(log_ratio);
+        const torch::Tensor surrogate =
+            torch::min(ratio * A, torch::clamp(ratio, 1.0 - s_.clip, 1.0 + s_.clip) * A);
+        const torch::Tensor policy_loss = -surrogate.mean();
+        const torch::Tensor value_loss =
+            (model_->value(o) - target.index_select(0, idx)).pow(2).mean();
+        const torch::Tensor entropy = model_->entropy();
+        const double kl = ((ratio - 1.0) - log_ratio).mean().item<double>();
+        if (s_.target_kl > 0.0 && kl > s_.target_kl) {
+          stop = true;  // this minibatch's step is not taken
+          break;
+        }
+        const torch::Tensor loss =
+            policy_loss + s_.value_coef * value_loss - s_.entropy_coef * entropy;
+        optimizer_.zero_grad();
+        loss.backward();
+        if (s_.max_grad_norm > 0.0)
+          torch::nn::utils::clip_grad_norm_(model_->parameters(), s_.max_grad_norm);
+        optimizer_.step();
+        out.policy_loss += policy_loss.item<double>();
+        out.value_loss += value_loss.item<double>();
+        out.entropy += entropy.item<double>();
+        out.approx_kl += kl;
+        out.clip_fraction +=
+            ((ratio - 1.0).abs() > s_.clip).to(torch::kFloat32).mean().item<double>();
+        ++batches;
+      }
+    }
+    if (batches > 0) {
+      out.policy_loss /= batches;
+      out.value_loss /= batches;
+      out.entropy /= batches;
+      out.approx_kl /= batches;
+      out.clip_fraction /= batches;
+    }
+    out.std = std();
+    return out;
+  }
+
+  /// Saves the policy as a TorchScript module: forward(x) = μ_θ(x) (the test-mode action),
+  /// value(x) = V_θ(x), log_std() = log σ; attributes observation_size, action_size, activation,
+  /// actor_hidden, critic_hidden. Python: torch.jit.load(path)(torch.zeros(1, O)).
+  /// @throws walkgen::invalid_argument if the file cannot be written.
+  void save(const std::string& path) const {
+    torch::jit::Module m("WalkgenPpoPolicy");
+    for (const auto& p : model_->named_parameters())
+      m.register_parameter(script_name(p.key()), p.value().detach().clone(), false);
+    m.register_attribute("observation_size", c10::IntType::get(), c10::IValue(std::int64_t(obs_)));
+    m.register_attribute("action_size", c10::IntType::get(), c10::IValue(std::int64_t(act_)));
+    m.register_attribute("activation", c10::IntType::get(),
+                         c10::IValue(static_cast<std::int64_t>(s_.activation)));
+    m.register_attribute("actor_hidden", c10::ListType::ofInts(),
+                         c10::IValue(c10::List<std::int64_t>(s_.actor_hidden)));
+    m.register_attribute("critic_hidden", c10::ListType::ofInts(),
+                         c10::IValue(c10::List<std::int64_t>(s_.critic_hidden)));
+    std::ostringstream src;
+    src << "def forward(self, x):\n"
+        << script_mlp("actor", s_.actor_hidden.size(), true) << "def value(self, x):\n"
+        << script_mlp("critic", s_.critic_hidden.size(), false)
+        << "def log_std_values(self):\n    return self.log_std\n";
+    m.define(src.str());
+    try {
+      m.save(path);
+    } catch (const c10::Error& e) {
+      throw invalid_argument(detail::expected_got("TorchPpo::save", "a writable path", path,
+                                                  "does the folder exist?"));
+    }
+  }
+
+  /// Loads a policy saved by save(): sizes and layers from the file, training hyper-parameters
+  /// from `settings` (its sizes and activation are replaced by the file's).
+  /// @throws walkgen::invalid_argument if the file is missing or not a walkgen policy.
+  static TorchPpo load(const std::string& path, PpoSettings settings = {}) {
+    torch::jit::Module m;
+    try {
+      m = torch::jit::load(path);
+    } catch (const c10::Error& e) {
+      throw invalid_argument(detail::expected_got("TorchPpo::load", "a TorchScript file", path,
+                                                  "saved by TorchPpo::save?"));
+    }
+    for (const char* a :
+         {"observation_size", "action_size", "activation", "actor_hidden", "critic_hidden"}) {
+      check_argument(m.hasattr(a), "TorchPpo::load", std::string("an attribute ") + a,
+                     "none in " + path, "the file was not saved by TorchPpo::save");
+    }
+    settings.actor_hidden = m.attr("actor_hidden").toIntVector();
+    settings.critic_hidden = m.attr("critic_hidden").toIntVector();
+    settings.activation = static_cast<TorchActivation>(m.attr("activation").toInt());
+    TorchPpo ppo(static_cast<int>(m.attr("observation_size").toInt()),
+                 static_cast<int>(m.attr("action_size").toInt()), settings);
+    ppo.copy_parameters(m, path);
+    return ppo;
+  }
+
+  /// Replaces this policy's weights by those of a file saved by save() from a policy of the
+  /// same sizes (e.g. the best epoch's checkpoint). The optimiser's state is kept.
+  /// @throws walkgen::invalid_argument if the file is missing or its layers differ.
+  void load_parameters(const std::string& path) {
+    torch::jit::Module m;
+    try {
+      m = torch::jit::load(path);
+    } catch (const c10::Error& e) {
+      throw invalid_argument(detail::expected_got("TorchPpo::load_parameters", "a TorchScript file",
+                                                  path, "saved by TorchPpo::save?"));
+    }
+    copy_parameters(m, path);
+  }
+
+ private:
+  void copy_parameters(const torch::jit::Module& m, const std::string& path) {
+    torch::NoGradGuard no_grad;
+    for (auto& p : model_->named_parameters()) {
+      const std::string name = script_name(p.key());
+      check_argument(m.hasattr(name), "TorchPpo::load", "a parameter " + name, "none in " + path);
+      const torch::Tensor t = m.attr(name).toTensor();
+      const std::string where = "TorchPpo::load: " + name;
+      check_argument(t.sizes() == p.value().sizes(), where.c_str(), p.value().sizes(), t.sizes());
+      p.value().copy_(t);
+    }
+  }
+  static std::string script_name(std::string key) {
+    std::replace(key.begin(), key.end(), '.', '_');
+    return key;
+  }
+  std::string script_mlp(const std::string& prefix, std::size_t hidden, bool tanh_out) const {
+    std::ostringstream s;
+    s << "    h = x\n";
+    const char* act = s_.activation == TorchActivation::relu ? "torch.relu" : "torch.tanh";
+    for (std::size_t i = 0; i <= hidden; ++i) {
+      const std::string l = "self." + prefix + std::to_string(i);
+      const std::string lin = "torch.matmul(h, " + l + "_weight.t()) + " + l + "_bias";
+      if (i < hidden)
+        s << "    h = " << act << "(" << lin << ")\n";
+      else
+        s << "    h = " << lin << "\n";
+    }
+    s << (tanh_out ? "    return torch.tanh(h)\n" : "    return h.squeeze(-1)\n");
+    return s.str();
+  }
+  static const PpoSettings& checked(const PpoSettings& s, int obs, int act) {
+    check_argument(obs >= 1 && act >= 1, "TorchPpo", "observation and action sizes >= 1",
+                   std::to_string(obs) + " and " + std::to_string(act));
+    for (auto h : s.actor_hidden) check_argument(h >= 1, "PpoSettings.actor_hidden", ">= 1", h);
+    for (auto h : s.critic_hidden) check_argument(h >= 1, "PpoSettings.critic_hidden", ">= 1", h);
+    check_positive("PpoSettings.initial_std", s.initial_std);
+    check_positive("PpoSettings.learning_rate", s.learning_rate);
+    check_argument(s.gamma > 0.0 && s.gamma <= 1.0, "PpoSettings.gamma", "a value in (0, 1]",
+                   s.gamma);
+    check_argument(s.lambda >= 0.0 && s.lambda <= 1.0, "PpoSettings.lambda", "a value in [0, 1]",
+                   s.lambda);
+    check_positive("PpoSettings.clip", s.clip);
+    check_non_negative("PpoSettings.value_coef", s.value_coef);
+    check_argument(std::isfinite(s.entropy_coef), "PpoSettings.entropy_coef", "finite",
+                   s.entropy_coef);
+    check_argument(s.epochs >= 1, "PpoSettings.epochs", "at least 1", s.epochs);
+    check_argument(s.minibatch >= 1, "PpoSettings.minibatch", "at least 1", s.minibatch);
+    check_positive("PpoSettings.reward_scale", s.reward_scale);
+    return s;
+  }
+
+  PpoSettings s_;
+  int obs_, act_;
+  TorchActorCritic model_;
+  torch::optim::Adam optimizer_;
+};
+
+}  // namespace walkgen

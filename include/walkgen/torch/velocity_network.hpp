@@ -1,0 +1,122 @@
+#pragma once
+/// @file
+/// The behavioural-cloning network in the control loop (thesis §7.1.2, figure 8.2): a U-Net-LSTM
+/// trained in Python (python/bc_train.py) and exported as TorchScript turns each new frame of the
+/// chest cameras (left RGB + WLS disparity) into a velocity command (v_x, ω_z) for the NMPC,
+/// keeping the LSTM's state from frame to frame. libtorch adapter (walkgen::torch).
+///
+/// Pre-processing, identical to python/bc_train.py: RGB (240 × 320) and disparity are averaged
+/// over 4 × 4 blocks to 60 × 80, RGB scaled to [0, 1], disparity [px] divided by 32, stacked to
+/// four channels. The module must have a method `step(frame (1, 4, 60, 80), h, c)` returning
+/// (output (1, 2) in [−1, 1], h, c) and an int attribute `hidden` (the LSTM size); the output
+/// times max_command is the command.
+
+#include <torch/script.h>
+#include <torch/torch.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/robot_io/robot.hpp"
+
+namespace walkgen {
+
+struct VelocityNetworkSettings {
+  /// (v_x [m/s], ω_z [rad/s]) of an output of ±1: Heicub's max_command, as in bc_train.py.
+  Eigen::Vector2d max_command = Eigen::Vector2d(0.034, 0.075);
+  double disparity_scale = 32.0;  ///< [px] divides the disparity (D of the thesis)
+  int block = 4;                  ///< downsampling: the mean of block × block pixels
+};
+
+/// A TorchScript velocity network with its recurrent state. Not thread-safe.
+class VelocityNetwork {
+ public:
+  /// @throws walkgen::invalid_argument when the file cannot be loaded or lacks `step` or
+  ///   `hidden` (naming the file).
+  explicit VelocityNetwork(const std::string& path,
+                           VelocityNetworkSettings settings = VelocityNetworkSettings())
+      : settings_(std::move(settings)) {
+    check_argument(settings_.block >= 1 && settings_.disparity_scale > 0.0 &&
+                       settings_.max_command.allFinite(),
+                   "VelocityNetworkSettings", "block >= 1, disparity_scale > 0, finite limits",
+                   "out of range");
+    try {
+      module_ = torch::jit::load(path);
+    } catch (const std::exception& e) {
+      check_argument(false, "VelocityNetwork: model", "a TorchScript file (python/bc_train.py)",
+                     "'" + path + "' (" + first_line(e.what()) + ")");
+    }
+    check_argument(module_.find_method("step").has_value() && module_.hasattr("hidden"),
+                   "VelocityNetwork: model", "a module with step(frame, h, c) and `hidden`",
+                   "'" + path + "'");
+    hidden_ = module_.attr("hidden").toInt();
+    module_.eval();
+    reset();
+  }
+
+  /// Forgets the past frames (a new episode).
+  void reset() {
+    h_ = torch::zeros({1, 1, hidden_});
+    c_ = torch::zeros({1, 1, hidden_});
+  }
+
+  /// The command (v_x, 0, ω_z) after one more frame: `left` the left camera's RGB image,
+  /// `disparity` its WLS disparity [px] (width × height floats, row-major, ≤ 0 unknown).
+  /// @throws walkgen::invalid_argument when the sizes do not match or are not multiples of the
+  ///   block.
+  Eigen::Vector3d step(const CameraImage& left, const float* disparity) {
+    const int b = settings_.block;
+    check_argument(left.width > 0 && left.height > 0 && left.width % b == 0 &&
+                       left.height % b == 0 &&
+                       left.rgb.size() == std::size_t(left.width) * std::size_t(left.height) * 3 &&
+                       disparity != nullptr,
+                   "VelocityNetwork::step: image", "RGB with sides multiple of the block",
+                   std::to_string(left.width) + "x" + std::to_string(left.height));
+    const int h = left.height / b, w = left.width / b;
+    if (frame_.numel() != 4 * h * w) frame_ = torch::zeros({1, 4, h, w});
+    float* f = frame_.data_ptr<float>();
+    const double area = double(b) * double(b);
+    for (int v = 0; v < h; ++v) {
+      for (int u = 0; u < w; ++u) {
+        double sum[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int dv = 0; dv < b; ++dv) {
+          const std::size_t row = std::size_t(v * b + dv) * std::size_t(left.width);
+          for (int du = 0; du < b; ++du) {
+            const std::size_t p = row + std::size_t(u * b + du);
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += left.rgb[3 * p + std::size_t(ch)];
+            // The recorder stores disparity × 16 as 16-bit: unknown (≤ 0) is 0 there too.
+            sum[3] += std::floor(std::max(0.0f, disparity[p]) * 16.0f + 0.5f) / 16.0f;
+          }
+        }
+        const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
+        for (int ch = 0; ch < 3; ++ch)
+          f[std::size_t(ch) * std::size_t(h * w) + i] = float(sum[ch] / area / 255.0);
+        f[3 * std::size_t(h * w) + i] = float(sum[3] / area / settings_.disparity_scale);
+      }
+    }
+    torch::NoGradGuard no_grad;
+    const auto out = module_.get_method("step")({frame_, h_, c_}).toTuple();
+    const torch::Tensor y = out->elements()[0].toTensor();
+    h_ = out->elements()[1].toTensor();
+    c_ = out->elements()[2].toTensor();
+    const float vx = y[0][0].item<float>(), wz = y[0][1].item<float>();
+    check_argument(std::isfinite(vx) && std::isfinite(wz), "VelocityNetwork::step: output",
+                   "finite values", "NaN or inf");
+    return {settings_.max_command.x() * vx, 0.0, settings_.max_command.y() * wz};
+  }
+
+  std::int64_t hidden() const { return hidden_; }
+
+ private:
+  static std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+  VelocityNetworkSettings settings_;
+  torch::jit::Module module_;
+  std::int64_t hidden_ = 0;
+  torch::Tensor h_, c_, frame_;
+};
+
+}  // namespace walkgen

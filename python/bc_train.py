@@ -1,0 +1,325 @@
+#!/usr/bin/python3
+"""Behavioural cloning (thesis §7.1, §11.1.1, figure 11.2): trains the U-Net-LSTM on recorded
+demonstrations (examples/record_demonstrations: index.txt, rgb/, disparity/) and exports it as
+TorchScript for the C++ controller.
+
+    /usr/bin/python3 python/bc_train.py DATA OUT [--epochs 30] [--batch 32] [--lr 1e-3]
+                                          [--sequence 5] [--chunk 16] [--width 8] [--seed 0]
+                                          [--max-steps N]
+
+Pre-processing (the C++ side, walkgen/torch/velocity_network.hpp, does the same): the left RGB
+image and the WLS disparity (240 x 320) are averaged over 4 x 4 blocks to 60 x 80; RGB is scaled
+to [0, 1], disparity [px] divided by 32 (D of the thesis); the four channels are stacked to
+RGBD. Samples are windows of consecutive frames of one episode (Chunks), the loss on the command after
+each frame with at least `sequence` frames of history (the thesis's sequences of 5): (v_x, omega_z) divided by the generator's limits (Heicub's
+0.034 m/s and 0.075 rad/s), so the network's tanh output times the limits is the command.
+
+Split: 90 % of the episodes for training, 10 % (at least one) for validation, so that the
+validation frames come from rooms the network has not seen (the thesis split frames at random).
+The weights with the best validation loss are kept. Writes to OUT: model.pt (TorchScript, with
+a `step(frame, h, c)` method for frame-by-frame inference), training_log.csv (epoch, train and
+validation MSE, seconds), training.png (the loss curves, figure 11.3), and histograms.png and
+histograms.csv: ground truth vs prediction on the validation split with the KL divergence
+(eq. 11.1) and the entropy (eq. 9.1) of each velocity.
+"""
+import argparse
+import csv
+import math
+import os
+import random
+import sys
+import time
+
+import numpy as np
+import torch
+import torch.nn as nn
+from PIL import Image
+
+MAX_COMMAND = (0.034, 0.075)  # v_x [m/s], omega_z [rad/s]: heicub_settings().max_command
+DISPARITY_SCALE = 32.0
+HEIGHT, WIDTH = 60, 80
+
+
+def block_mean(image, factor=4):
+    """Averages factor x factor blocks (the C++ side does the same, cv::INTER_AREA-free)."""
+    h, w = image.shape[0] // factor * factor, image.shape[1] // factor * factor
+    image = image[:h, :w]
+    shape = (h // factor, factor, w // factor, factor) + image.shape[2:]
+    return image.reshape(shape).mean(axis=(1, 3))
+
+
+def load_frame(folder, rgb_path, disparity_path):
+    rgb = np.asarray(Image.open(os.path.join(folder, rgb_path)).convert("RGB"), dtype=np.float32)
+    disparity = np.asarray(Image.open(os.path.join(folder, disparity_path)), dtype=np.float32)
+    rgb = block_mean(rgb) / 255.0
+    disparity = block_mean(disparity / 16.0) / DISPARITY_SCALE
+    frame = np.concatenate([rgb.transpose(2, 0, 1), disparity[None]], axis=0)
+    if frame.shape != (4, HEIGHT, WIDTH):
+        sys.exit("bc_train: expected 240 x 320 images, got %s" % (rgb.shape,))
+    return frame
+
+
+def read_index(folder):
+    path = os.path.join(folder, "index.txt")
+    if not os.path.exists(path):
+        sys.exit("bc_train: no index.txt in %s (record with examples/record_demonstrations)" % folder)
+    episodes = {}
+    for number, line in enumerate(open(path), 1):
+        if not line.strip() or line.startswith("#"):
+            continue
+        fields = line.split()
+        if len(fields) != 7:
+            sys.exit("bc_train: %s:%d: expected 7 fields, got %d" % (path, number, len(fields)))
+        rgb, disparity, episode = fields[:3]
+        t, vx, vy, omega = (float(x) for x in fields[3:])
+        episodes.setdefault(episode, []).append((t, rgb, disparity, vx, omega))
+    for frames in episodes.values():
+        frames.sort()
+    return episodes
+
+
+class Chunks(torch.utils.data.Dataset):
+    """Windows of `chunk` consecutive frames of one episode with the command after each frame.
+    The loss counts a frame once it has `sequence` frames of history (the thesis's sequences
+    of 5), or from the first frame of an episode (the robot starts without history); windows
+    overlap by sequence - 1 frames so that every frame counts exactly once. Encoding each frame
+    once per window instead of once per 5-frame sequence makes CPU training about 4x cheaper."""
+
+    def __init__(self, folder, episodes, sequence, chunk):
+        self.frames, self.labels, self.items = [], [], []
+        stride = chunk - sequence + 1
+        for frames in episodes:
+            start = len(self.frames)
+            for _, rgb, disparity, vx, omega in frames:
+                self.frames.append(torch.from_numpy(load_frame(folder, rgb, disparity)))
+                self.labels.append(torch.tensor([vx / MAX_COMMAND[0], omega / MAX_COMMAND[1]],
+                                                dtype=torch.float32).clamp(-1.0, 1.0))
+            end = len(self.frames)
+            s = start
+            while True:
+                ids = [min(i, end - 1) for i in range(s, s + chunk)]  # the last frame repeats
+                mask = [0.0] * chunk
+                first = 0 if s == start else sequence - 1
+                for k in range(first, chunk):
+                    if s + k < end:
+                        mask[k] = 1.0
+                self.items.append((ids, torch.tensor(mask)))
+                if s + chunk >= end:
+                    break
+                s += stride
+
+    def __len__(self):
+        return len(self.items)
+
+    def __getitem__(self, i):
+        ids, mask = self.items[i]
+        return (torch.stack([self.frames[j] for j in ids]),
+                torch.stack([self.labels[j] for j in ids]), mask)
+
+
+def block(inputs, outputs):
+    return nn.Sequential(nn.Conv2d(inputs, outputs, 3, padding=1), nn.ReLU(inplace=True),
+                         nn.Conv2d(outputs, outputs, 3, padding=1), nn.ReLU(inplace=True))
+
+
+class UNetLstm(nn.Module):
+    """Figure 11.2: a U-Net (two poolings, skip connections by concatenation) per frame, a
+    fully connected layer, an LSTM over the frames, and a tanh regression of (v_x, omega_z)."""
+
+    def __init__(self, width=16, hidden=64):
+        super().__init__()
+        w = width
+        self.down1, self.down2, self.bottom = block(4, w), block(w, 2 * w), block(2 * w, 4 * w)
+        self.up2, self.up1 = block(6 * w, 2 * w), block(3 * w, w)
+        self.pool = nn.MaxPool2d(2)
+        self.upsample = nn.Upsample(scale_factor=2.0, mode="bilinear", align_corners=False)
+        self.squeeze = nn.Sequential(nn.Conv2d(w, 8, 1), nn.ReLU(inplace=True),
+                                     nn.AdaptiveAvgPool2d((6, 8)))
+        self.fc = nn.Sequential(nn.Linear(8 * 6 * 8, hidden), nn.ReLU(inplace=True))
+        self.lstm = nn.LSTM(hidden, hidden, batch_first=True)
+        self.out = nn.Linear(hidden, 2)
+        self.hidden = hidden
+
+    def encode(self, x):
+        """One frame per row of x (N, 4, 60, 80) -> features (N, hidden)."""
+        d1 = self.down1(x)
+        d2 = self.down2(self.pool(d1))
+        b = self.bottom(self.pool(d2))
+        u2 = self.up2(torch.cat([self.upsample(b), d2], dim=1))
+        u1 = self.up1(torch.cat([self.upsample(u2), d1], dim=1))
+        return self.fc(torch.flatten(self.squeeze(u1), 1))
+
+    def forward(self, x):
+        """x (B, T, 4, 60, 80) -> (B, 2) in [-1, 1], for the latest frame."""
+        return self.forward_all(x)[:, -1]
+
+    def forward_all(self, x):
+        """x (B, T, 4, 60, 80) -> (B, T, 2): the command after each frame of the sequences."""
+        b, t = x.shape[0], x.shape[1]
+        frames = x.reshape(b * t, x.shape[2], x.shape[3], x.shape[4])
+        features = self.encode(frames).reshape(b, t, self.hidden)
+        y, _ = self.lstm(features)
+        return torch.tanh(self.out(y))
+
+    @torch.jit.export
+    def step(self, frame, h, c):
+        """One frame (1, 4, 60, 80) and the LSTM state (1, 1, hidden) each -> (1, 2), h, c."""
+        features = self.encode(frame).unsqueeze(1)
+        y, (h2, c2) = self.lstm(features, (h, c))
+        return torch.tanh(self.out(y[:, -1])), h2, c2
+
+
+def histograms(truth, prediction, out, bins):
+    """Per velocity: histograms (bins), KL(truth || prediction) (eq. 11.1), entropies (eq. 9.1)."""
+    rows = []
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6))
+    for k, (name, unit) in enumerate((("v_x", "m/s"), ("omega_z", "rad/s"))):
+        edges = bins[k]
+        p = np.histogram(truth[:, k], bins=edges)[0].astype(float)
+        q = np.histogram(prediction[:, k], bins=edges)[0].astype(float)
+        p, q = p / p.sum(), q / q.sum()
+        eps = 1e-6  # empty predicted bins: the divergence stays finite
+        kl = float(np.sum(p * np.log((p + eps) / (q + eps))))
+        entropy = lambda d: float(-np.sum(d[d > 0] * np.log(d[d > 0])))
+        rows.append((name, kl, entropy(p), entropy(q)))
+        centres = 0.5 * (edges[1:] + edges[:-1])
+        width = edges[1] - edges[0]
+        axes[k].bar(centres, p, width=width, alpha=0.6, label="ground truth")
+        axes[k].bar(centres, q, width=width, alpha=0.6, label="prediction")
+        axes[k].set_xlabel("%s [%s]" % (name, unit))
+        axes[k].set_title("KL %.3f, entropy %.2f / %.2f" % (kl, entropy(p), entropy(q)))
+        axes[k].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "histograms.png"), dpi=100)
+    plt.close(fig)
+    with open(os.path.join(out, "histograms.csv"), "w") as f:
+        f.write("velocity,kl_divergence,entropy_truth,entropy_prediction\n")
+        for r in rows:
+            f.write("%s,%.6f,%.6f,%.6f\n" % r)
+    return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("data")
+    parser.add_argument("out")
+    parser.add_argument("--epochs", type=int, default=30)
+    parser.add_argument("--batch", type=int, default=32)
+    parser.add_argument("--lr", type=float, default=1e-3)
+    parser.add_argument("--sequence", type=int, default=5)
+    parser.add_argument("--chunk", type=int, default=16)
+    parser.add_argument("--width", type=int, default=8)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--max-steps", type=int, default=0, help="stop after N optimiser steps")
+    parser.add_argument("--threads", type=int, default=2)
+    args = parser.parse_args()
+    if args.epochs < 1 or args.batch < 1 or args.sequence < 1 or not args.lr > 0:
+        sys.exit("bc_train: epochs, batch, sequence >= 1 and lr > 0 expected")
+    if args.chunk < args.sequence:
+        sys.exit("bc_train: --chunk must be at least --sequence")
+    torch.manual_seed(args.seed)
+    random.seed(args.seed)
+    np.random.seed(args.seed)
+    torch.set_num_threads(args.threads)
+    os.makedirs(args.out, exist_ok=True)
+
+    episodes = read_index(args.data)
+    names = sorted(episodes)
+    random.Random(args.seed).shuffle(names)
+    n_val = max(1, len(names) // 10) if len(names) > 1 else 0
+    val_names, train_names = names[:n_val], names[n_val:]
+    if not train_names:
+        sys.exit("bc_train: need at least one training episode")
+    train = Chunks(args.data, [episodes[n] for n in train_names], args.sequence, args.chunk)
+    val = Chunks(args.data, [episodes[n] for n in val_names or train_names], args.sequence,
+                 args.chunk)
+    print("bc_train: %d episodes (%d frames) for training, %d (%d frames) for validation"
+          % (len(train_names), len(train.frames), len(val_names), len(val.frames)), flush=True)
+    batch = max(1, args.batch // (args.chunk - args.sequence + 1))  # windows ~ args.batch frames
+    loader = torch.utils.data.DataLoader(train, batch_size=batch, shuffle=True)
+    val_loader = torch.utils.data.DataLoader(val, batch_size=8)
+
+    model = UNetLstm(args.width)
+    optimiser = torch.optim.Adam(model.parameters(), lr=args.lr)
+    best, steps, log = math.inf, 0, []
+
+    def loss_fn(prediction, label, mask):
+        """MSE over the counted frames (mask 1)."""
+        squared = ((prediction - label) ** 2).mean(dim=2) * mask
+        return squared.sum() / mask.sum().clamp(min=1.0)
+
+    def evaluate():
+        model.eval()
+        total, n, truth, pred = 0.0, 0, [], []
+        with torch.no_grad():
+            for x, y, m in val_loader:
+                p = model.forward_all(x)
+                total += loss_fn(p, y, m).item() * m.sum().item()
+                n += m.sum().item()
+                keep = m.numpy() > 0.5
+                truth.append(y.numpy()[keep])
+                pred.append(p.numpy()[keep])
+        model.train()
+        return total / n, np.concatenate(truth), np.concatenate(pred)
+
+    start = time.time()
+    for epoch in range(1, args.epochs + 1):
+        total, n = 0.0, 0
+        for x, y, m in loader:
+            optimiser.zero_grad()
+            loss = loss_fn(model.forward_all(x), y, m)
+            loss.backward()
+            optimiser.step()
+            total += loss.item() * m.sum().item()
+            n += m.sum().item()
+            steps += 1
+            if args.max_steps and steps >= args.max_steps:
+                break
+        val_loss, _, _ = evaluate()
+        log.append((epoch, total / n, val_loss, time.time() - start))
+        marker = ""
+        if val_loss < best:
+            best = val_loss
+            torch.save(model.state_dict(), os.path.join(args.out, "best.pth"))
+            marker = " (best)"
+        print("epoch %3d: train MSE %.4f, validation MSE %.4f, %.0f s%s"
+              % (epoch, total / n, val_loss, time.time() - start, marker), flush=True)
+        if args.max_steps and steps >= args.max_steps:
+            break
+
+    model.load_state_dict(torch.load(os.path.join(args.out, "best.pth")))
+    model.eval()
+    scripted = torch.jit.script(model)
+    scripted.save(os.path.join(args.out, "model.pt"))
+    with open(os.path.join(args.out, "training_log.csv"), "w") as f:
+        f.write("epoch,train_mse,validation_mse,seconds\n")
+        for row in log:
+            f.write("%d,%.6f,%.6f,%.1f\n" % row)
+    _, truth, pred = evaluate()
+    truth = truth * np.array(MAX_COMMAND)
+    pred = pred * np.array(MAX_COMMAND)
+    bins = (np.linspace(-0.036, 0.036, 19), np.linspace(-0.08, 0.08, 17))
+    rows = histograms(truth, pred, args.out, bins)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    ax.plot([r[0] for r in log], [r[1] for r in log], label="training")
+    ax.plot([r[0] for r in log], [r[2] for r in log], label="validation")
+    ax.set_xlabel("epoch")
+    ax.set_ylabel("MSE (normalised commands)")
+    ax.set_yscale("log")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "training.png"), dpi=100)
+    for name, kl, ht, hp in rows:
+        print("bc_train: %s: KL divergence %.3f, entropy truth %.2f, prediction %.2f"
+              % (name, kl, ht, hp))
+    print("bc_train: best validation MSE %.4f; wrote %s" % (best, os.path.join(args.out, "model.pt")))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,208 @@
+#pragma once
+// One navigation episode in a walkgen::NavigationScene (thesis §11.1): the humanoid in MuJoCo,
+// closed loop (figure 6.1), a policy choosing the velocity command once per NMPC tick from what
+// the robot sees (left RGB + WLS disparity of its chest stereo pair) or, for the scripted expert,
+// from what it knows of the scene. Optionally records the episode as a demonstration (figure
+// 7.2). Shared by examples/record_demonstrations.cpp, examples/bc_evaluate.cpp and the tests.
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "support/simulated_tasks.hpp"
+#include "walkgen/mujoco/navigation_scene.hpp"
+#include "walkgen/opencv/demonstration_recorder.hpp"
+#include "walkgen/opencv/stereo_depth.hpp"
+
+namespace walkgen_test {
+
+/// What a policy sees at a tick.
+struct NavigationObservation {
+  double time = 0.0;                              ///< [s] since the episode started
+  const walkgen::StereoImages* images = nullptr;  ///< both chest cameras (RGB, exact depth)
+  const cv::Mat* disparity = nullptr;             ///< WLS disparity of the pair [px] (CV_32F)
+  walkgen::PlanarPose pose;                       ///< the generator's estimate (middle of the feet)
+  const walkgen::NavigationScene* scene = nullptr;  ///< for scripted experts only
+};
+
+using NavigationPolicy = std::function<Eigen::Vector3d(const NavigationObservation&)>;
+
+struct NavigationOptions {
+  double time_limit = 0.0;      ///< [s] simulated; 0: from the scene (distance and turning)
+  double reach_distance = 0.3;  ///< success: the true CoM this close to the target's centre
+  walkgen::DemonstrationRecorder* recorder = nullptr;          ///< records every tick when set
+  std::function<void(walkgen::MujocoRobot&, double)> on_tick;  ///< e.g. to render a video
+};
+
+struct NavigationResult {
+  bool reached = false;   ///< the true CoM came within reach_distance, no collision, no fall
+  bool collided = false;  ///< the robot touched a wall, chair, crate or the person
+  bool fell = false;
+  std::string message;
+  double time = 0.0;
+  double final_distance = 0.0;            ///< true CoM to the target's centre [m]
+  std::vector<Eigen::Vector3d> commands;  ///< one per tick
+  std::vector<double> zmp_distance;       ///< NMPC vs measured ZMP per valid sample [m]
+  long qp_failures = 0;
+};
+
+/// The scripted expert: walkgen::GoToTarget around the chairs, waiting while the person is in
+/// the way (within 1.2 m and 60° of the heading), sideways velocity never used (as the thesis's
+/// users did, §11.1.1).
+class ScriptedExpert {
+ public:
+  ScriptedExpert(const walkgen::NavigationScene& scene, const Eigen::Vector3d& max_command,
+                 double stop_distance = 0.22)
+      : scene_(scene), steer_(scene.target, max_command, scene.obstacles_at(0.0, 0.12), [&] {
+          walkgen::GoToTargetSettings s;
+          s.stop_distance = stop_distance;
+          return s;
+        }()) {}
+
+  Eigen::Vector3d operator()(const NavigationObservation& o) {
+    if (scene_.has_person) {
+      const Eigen::Vector2d to =
+          scene_.person.position(o.time) - Eigen::Vector2d(o.pose.x, o.pose.y);
+      const double bearing = std::atan2(to.y(), to.x()) - o.pose.yaw;
+      if (to.norm() < 1.2 && std::cos(bearing) > std::cos(60.0 * EIGEN_PI / 180.0)) {
+        return Eigen::Vector3d::Zero();  // let the person pass
+      }
+    }
+    Eigen::Vector3d c = steer_(o.pose).command;
+    c.y() = 0.0;
+    return c;
+  }
+
+ private:
+  const walkgen::NavigationScene& scene_;
+  walkgen::GoToTarget steer_;
+};
+
+/// Time to walk and turn to the scene's target at Heicub's speeds, with a margin.
+inline double navigation_time_limit(const walkgen::NavigationScene& s) {
+  const double turn = std::abs(std::atan2(s.target.y(), s.target.x()));
+  return 30.0 + 1.6 * (s.target.norm() / 0.032 + turn / 0.071) + (s.has_person ? 30.0 : 0.0);
+}
+
+/// Geom ids of everything the robot must not touch (walls, chairs, crates, person).
+inline std::vector<int> obstacle_geoms(const walkgen::MujocoRobot& robot) {
+  std::vector<int> ids;
+  for (const auto& o : robot.settings().objects) {
+    if (!o.collides || o.name == "target" || o.name == "distractor") continue;
+    const int id = mj_name2id(robot.model(), mjOBJ_GEOM, o.name.c_str());
+    if (id >= 0) ids.push_back(id);
+  }
+  return ids;
+}
+
+inline bool touches(const mjData* d, const std::vector<int>& geoms) {
+  for (int i = 0; i < d->ncon; ++i) {
+    for (int g : geoms) {
+      if (d->contact[i].geom1 == g || d->contact[i].geom2 == g) return true;
+    }
+  }
+  return false;
+}
+
+/// Runs `policy` in `scene` until the robot reaches the target, collides, falls, or the time
+/// limit passes.
+inline NavigationResult run_navigation_episode(const walkgen::NavigationScene& scene,
+                                               const NavigationPolicy& policy,
+                                               const NavigationOptions& options = {}) {
+  NavigationResult result;
+  static const walkgen::KinematicTree<double> tree = humanoid_tree();
+  walkgen::MujocoRobotSettings robot_settings;
+  robot_settings.objects = scene.objects();
+  walkgen::MujocoRobot robot(robot_settings);
+  HumanoidIk ik(tree);
+  walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  settings.obstacles = scene.obstacles_at(0.0, 0.12);  // capacity for chairs and the person
+  SimLoop loop(settings, robot, ik);
+  const std::vector<int> forbidden = obstacle_geoms(robot);
+
+  const walkgen::LoopTick& started = loop.start();
+  if (started.status != walkgen::LoopStatus::ok) {
+    result.fell = true;
+    result.message = started.message;
+    return result;
+  }
+  const double t0 = robot.output().time;
+  const double limit = options.time_limit > 0.0 ? options.time_limit : navigation_time_limit(scene);
+
+  // The stereo pipeline of §3.1 with the thesis's parameters on the ideal simulated pair.
+  const walkgen::StereoImages& first = robot.render_cameras();
+  if (first.status != walkgen::RenderStatus::ok) {
+    result.message = first.message;
+    return result;
+  }
+  const walkgen::PinholeIntrinsics k =
+      walkgen::pinhole_from_fovy(first.left.width, first.left.height, first.left.fovy);
+  const double baseline =
+      (first.left.pose_W_C.translation() - first.right.pose_W_C.translation()).norm();
+  walkgen::StereoDepthSettings depth_settings;
+  depth_settings.rgb_input = true;
+  walkgen::StereoDepth stereo(depth_settings, walkgen::ideal_disparity_to_depth(k, baseline));
+
+  while (true) {
+    const double t = robot.output().time - t0;
+    if (scene.has_person) {
+      const Eigen::Vector2d p = scene.person.position(t);
+      robot.set_object_position("person", {p.x(), p.y(), 0.0});
+      loop.mpc().set_obstacles(scene.obstacles_at(t, 0.12));
+    }
+    const walkgen::StereoImages& images = robot.render_cameras();
+    const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
+                       const_cast<std::uint8_t*>(images.left.rgb.data()));
+    const cv::Mat right(images.right.height, images.right.width, CV_8UC3,
+                        const_cast<std::uint8_t*>(images.right.rgb.data()));
+    const walkgen::StereoDepthFrame& frame = stereo.compute(left, right);
+    NavigationObservation obs;
+    obs.time = t;
+    obs.images = &images;
+    obs.disparity = &frame.disparity;
+    obs.pose = walking_pose(loop.mpc().state());
+    obs.scene = &scene;
+    Eigen::Vector3d command = policy(obs);
+    command = command.cwiseMax(-0.95 * settings.max_command).cwiseMin(0.95 * settings.max_command);
+    if (options.recorder != nullptr)
+      options.recorder->record(t, images.left, frame.disparity, command);
+    result.commands.push_back(command);
+    loop.set_command(command);
+    const walkgen::LoopTick& tick = loop.tick();
+    result.qp_failures += tick.mpc != walkgen::MpcStatus::solved;
+    for (const auto& s : loop.samples()) {
+      if (s.zmp.valid) {
+        result.zmp_distance.push_back(
+            std::hypot(s.zmp.zmp_W.x() - s.plan.zmp_x, s.zmp.zmp_W.y() - s.plan.zmp_y));
+      }
+    }
+    if (options.on_tick) options.on_tick(robot, t);
+    result.time = robot.output().time - t0;
+    result.final_distance = (true_com(robot) - scene.target).norm();
+    if (tick.status == walkgen::LoopStatus::fallen ||
+        tick.status == walkgen::LoopStatus::diverged) {
+      result.fell = true;
+      result.message = tick.message;
+      break;
+    }
+    if (touches(robot.data(), forbidden)) {
+      result.collided = true;
+      result.message = "touched an obstacle at t = " + std::to_string(result.time) + " s";
+      break;
+    }
+    if (result.final_distance <= options.reach_distance) {
+      result.reached = true;
+      break;
+    }
+    if (result.time >= limit) {
+      result.message = "time limit " + std::to_string(limit) + " s";
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace walkgen_test

@@ -1,0 +1,288 @@
+// Tests of walkgen::torch (thesis §4.2, §11.2): GAE (eq. 4.15) against a hand computation, the
+// Gaussian policy's log-probability and entropy (eq. 11.2), TorchScript save/load (also from
+// Python where /usr/bin/python3 has torch), the environments, and a short seeded PPO run on the
+// benchmarking environment of §11.2.1 that must learn.
+#include <gtest/gtest.h>
+#include <torch/torch.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "walkgen/torch/environment.hpp"
+#include "walkgen/torch/nmpc_environment.hpp"
+#include "walkgen/torch/parallel.hpp"
+#include "walkgen/torch/ppo.hpp"
+#include "walkgen/torch/training.hpp"
+
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return std::string(WALKGEN_TORCH_TEST_DIR) + "/" + name;
+}
+
+TEST(Gae, MatchesHandComputation) {
+  // Two environments, three steps; env 1 ends its episode at t = 1.
+  const std::vector<float> rewards{1.0f, 0.5f, 2.0f, -1.0f, 0.0f, 3.0f};  // [t][e]
+  const std::vector<float> values{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f};
+  const std::vector<float> dones{0, 0, 0, 1, 0, 0};
+  const double g = 0.9, l = 0.8;
+  std::vector<float> adv, ret;
+  walkgen::generalized_advantages(rewards, values, dones, 3, 2, g, l, adv, ret);
+  // env 0: δ2 = 0 + .9·.7 − .5, δ1 = 2 + .9·.5 − .3, δ0 = 1 + .9·.3 − .1
+  const double d2 = 0.0 + g * 0.7 - 0.5, d1 = 2.0 + g * 0.5 - 0.3, d0 = 1.0 + g * 0.3 - 0.1;
+  EXPECT_NEAR(adv[4], d2, 1e-6);
+  EXPECT_NEAR(adv[2], d1 + g * l * d2, 1e-6);
+  EXPECT_NEAR(adv[0], d0 + g * l * (d1 + g * l * d2), 1e-6);
+  // env 1: done at t = 1 cuts the bootstrap and the trace
+  const double e2 = 3.0 + g * 0.8 - 0.6, e1 = -1.0 - 0.4, e0 = 0.5 + g * 0.4 - 0.2;
+  EXPECT_NEAR(adv[5], e2, 1e-6);
+  EXPECT_NEAR(adv[3], e1, 1e-6);
+  EXPECT_NEAR(adv[1], e0 + g * l * e1, 1e-6);
+  EXPECT_NEAR(ret[1], adv[1] + 0.2, 1e-6);
+  EXPECT_THROW(walkgen::generalized_advantages(rewards, values, dones, 2, 2, g, l, adv, ret),
+               walkgen::invalid_argument);
+}
+
+TEST(TorchActorCritic, GaussianLogProbAndEntropy) {
+  walkgen::PpoSettings s;
+  s.initial_std = 0.3;
+  walkgen::TorchPpo ppo(3, 2, s);
+  const torch::Tensor mean = torch::tensor({{0.1f, -0.2f}});
+  const torch::Tensor a = torch::tensor({{0.4f, 0.1f}});
+  const double sigma = 0.3;
+  double expected = 0.0;
+  for (double d : {0.3, 0.3})
+    expected += -d * d / (2 * sigma * sigma) - std::log(sigma) - 0.5 * std::log(2 * M_PI);
+  EXPECT_NEAR(ppo.model()->log_prob(mean, a).item<double>(), expected, 1e-5);
+  // eq. 11.2 per dimension
+  EXPECT_NEAR(ppo.model()->entropy().item<double>(),
+              2 * (0.5 + 0.5 * std::log(2 * M_PI) + std::log(sigma)), 1e-5);
+  EXPECT_NEAR(ppo.std(), sigma, 1e-6);
+}
+
+TEST(TorchPpo, SeededRunsAreReproducible) {
+  walkgen::PpoSettings s;
+  s.seed = 42;
+  float a1[4], a2[4];
+  const float obs[4] = {0.1f, 0.2f, 0.3f, 0.4f};
+  {
+    walkgen::TorchPpo p(4, 2, s);
+    p.act(obs, 2, false, a1);
+  }
+  {
+    walkgen::TorchPpo p(4, 2, s);
+    p.act(obs, 2, false, a2);
+  }
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(a1[i], a2[i]);
+}
+
+TEST(TorchPpo, SaveLoadTorchScriptRoundTrip) {
+  walkgen::PpoSettings s;
+  s.actor_hidden = {16, 32};
+  s.critic_hidden = {8};
+  s.activation = walkgen::TorchActivation::relu;
+  s.seed = 3;
+  walkgen::TorchPpo ppo(4, 2, s);
+  {  // move the weights away from the initialisation
+    torch::NoGradGuard no_grad;
+    for (auto& p : ppo.model()->parameters()) p.add_(0.05 * torch::randn_like(p));
+  }
+  const std::string path = temp_path("ppo_roundtrip.pt");
+  ppo.save(path);
+  walkgen::TorchPpo loaded = walkgen::TorchPpo::load(path);
+  EXPECT_EQ(loaded.settings().actor_hidden, s.actor_hidden);
+  EXPECT_EQ(loaded.settings().critic_hidden, s.critic_hidden);
+  const float obs[8] = {1.0f, -2.0f, 3.0f, 0.5f, -1.0f, 0.0f, 2.0f, -4.0f};
+  float a[4], b[4], va[2], vb[2];
+  ppo.act(obs, 2, true, a, nullptr, va);
+  loaded.act(obs, 2, true, b, nullptr, vb);
+  for (int i = 0; i < 4; ++i) EXPECT_FLOAT_EQ(a[i], b[i]);
+  for (int i = 0; i < 2; ++i) EXPECT_FLOAT_EQ(va[i], vb[i]);
+  EXPECT_NEAR(loaded.std(), ppo.std(), 1e-7);
+
+  // The TorchScript module itself gives the same mean action (C++ torch::jit).
+  torch::jit::Module m = torch::jit::load(path);
+  const torch::Tensor x = torch::from_blob(const_cast<float*>(obs), {2, 4}, torch::kFloat32);
+  const torch::Tensor y = m.forward({x}).toTensor();
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(y.view({-1})[i].item<float>(), a[i], 1e-6);
+
+#ifdef WALKGEN_TORCH_PYTHON
+  // ... and Python's torch.jit.load.
+  const std::string out = temp_path("ppo_roundtrip_python.txt");
+  const std::string cmd = "/usr/bin/python3 -c \"import torch; m = torch.jit.load('" + path +
+                          "'); x = torch.tensor([[1.0, -2.0, 3.0, 0.5], [-1.0, 0.0, 2.0, -4.0]]); "
+                          "print(' '.join('%.9g' % v for v in m(x).flatten().tolist()), "
+                          "' '.join('%.9g' % v for v in m.value(x).tolist()))\" > '" +
+                          out + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream in(out);
+  for (int i = 0; i < 4; ++i) {
+    double v = 0;
+    ASSERT_TRUE(in >> v);
+    EXPECT_NEAR(v, a[i], 1e-6);
+  }
+  for (int i = 0; i < 2; ++i) {
+    double v = 0;
+    ASSERT_TRUE(in >> v);
+    EXPECT_NEAR(v, va[i], 1e-5);
+  }
+#endif
+
+  // A policy of other sizes cannot take these weights; a missing file is a named error.
+  walkgen::TorchPpo other(5, 2, s);
+  EXPECT_THROW(other.load_parameters(path), walkgen::invalid_argument);
+  EXPECT_THROW(walkgen::TorchPpo::load(temp_path("no_such_policy.pt")), walkgen::invalid_argument);
+  EXPECT_THROW(ppo.save("/no/such/folder/p.pt"), walkgen::invalid_argument);
+}
+
+TEST(TorchPpo, RejectsBadSettings) {
+  walkgen::PpoSettings s;
+  s.clip = 0.0;
+  EXPECT_THROW(walkgen::TorchPpo(4, 2, s), walkgen::invalid_argument);
+  s = {};
+  s.gamma = 1.5;
+  EXPECT_THROW(walkgen::TorchPpo(4, 2, s), walkgen::invalid_argument);
+  EXPECT_THROW(walkgen::TorchPpo(0, 2, {}), walkgen::invalid_argument);
+}
+
+TEST(PointGoalEnv, RewardsAndEnds) {
+  walkgen::PointGoalEnv env;
+  env.reset(Eigen::Vector2d(1.0, 0.0));
+  float obs[4];
+  env.observe(obs);
+  EXPECT_EQ(obs[2], 1.0f);
+  const float right[2] = {1.0f, 0.0f};
+  walkgen::EnvStep r = env.step(right);
+  EXPECT_NEAR(r.reward, 0.1, 1e-12);  // progress
+  EXPECT_EQ(r.end, walkgen::EpisodeEnd::none);
+  for (int k = 0; k < 4; ++k) r = env.step(right);  // at 0.5: 0.5 away
+  EXPECT_EQ(r.end, walkgen::EpisodeEnd::none);
+  r = env.step(right);  // 0.4 away: not < 0.4
+  r = env.step(right);  // 0.3 away: won
+  EXPECT_EQ(r.end, walkgen::EpisodeEnd::success);
+  EXPECT_NEAR(r.reward, 0.1 + 10.0, 1e-9);
+  env.reset(Eigen::Vector2d(9.95, 0.0));
+  const float away[2] = {-5.0f, 0.0f};  // clipped to −1
+  r = env.step(away);
+  EXPECT_EQ(r.end, walkgen::EpisodeEnd::failure);
+  EXPECT_NEAR(r.reward, -0.1 - 10.0, 1e-9);
+  EXPECT_NEAR(env.agent().x(), -0.1, 1e-12);
+}
+
+TEST(StepPool, RunsEveryIndexOnceAndRethrows) {
+  walkgen::StepPool pool(2);
+  std::vector<int> hits(101, 0);
+  for (int rep = 0; rep < 50; ++rep) pool.run(101, [&](int i) { ++hits[i]; });
+  for (int h : hits) EXPECT_EQ(h, 50);
+  EXPECT_THROW(pool.run(4,
+                        [](int i) {
+                          if (i == 3) throw std::runtime_error("x");
+                        }),
+               std::runtime_error);
+  pool.run(3, [&](int i) { hits[i] = -1; });  // usable after an exception
+  EXPECT_EQ(hits[2], -1);
+  EXPECT_THROW(walkgen::StepPool(0), walkgen::invalid_argument);
+}
+
+TEST(NmpcGoalEnv, StateIsTheGoalInTheRobotFrame) {
+  walkgen::NmpcGoalEnv<16> env({}, 5);
+  walkgen::NmpcGoalTask task;
+  task.goal = Eigen::Vector2d(-1.0, 0.5);
+  env.reset(task);
+  float obs[2];
+  env.observe(obs);
+  EXPECT_NEAR(obs[0], -1.0 - env.position().x(), 1e-6);
+  EXPECT_NEAR(obs[1], 0.5 - env.position().y(), 1e-6);
+  // Turning in place (v = 0, ω = max) for 2 s: the goal rotates by −ω t in the robot frame,
+  // the commands are accepted (|c| < max_command) and every QP solves.
+  const float turn[2] = {0.0f, 1.0f};
+  for (int k = 0; k < 10; ++k) {
+    const walkgen::EnvStep r = env.step(turn);
+    ASSERT_EQ(r.end, walkgen::EpisodeEnd::none);
+    EXPECT_EQ(env.mpc().result().last_command, walkgen::CommandStatus::accepted);
+  }
+  EXPECT_GT(env.heading(), 0.3);
+  const Eigen::Vector3d c = env.command_of(turn);
+  EXPECT_LT(c[2], env.settings().walking.max_command[2]);
+  EXPECT_GT(c[2], 0.99 * env.settings().walking.max_command[2]);
+  const double q = env.heading();
+  const Eigen::Vector2d d = task.goal - env.position();
+  env.observe(obs);
+  EXPECT_NEAR(obs[0], std::cos(q) * d.x() + std::sin(q) * d.y(), 1e-5);
+  EXPECT_NEAR(obs[1], -std::sin(q) * d.x() + std::cos(q) * d.y(), 1e-5);
+}
+
+TEST(NmpcGoalEnv, WalkingToAGoalSucceedsWithTheBonus) {
+  walkgen::NmpcGoalEnv<16> env({}, 5);
+  walkgen::NmpcGoalTask task;
+  task.goal = Eigen::Vector2d(0.8, 0.0);
+  env.reset(task);
+  const float forward[2] = {1.0f, 0.0f};
+  walkgen::EnvStep r;
+  double total = 0.0;
+  for (int k = 0; k < env.settings().max_steps && !r.done(); ++k) {
+    r = env.step(forward);
+    total += r.reward;
+  }
+  EXPECT_EQ(r.end, walkgen::EpisodeEnd::success);
+  EXPECT_LT(env.distance(), env.settings().success_radius);
+  // ≈ w_goal · (0.8 − 0.2) + 100 − the time penalty
+  EXPECT_GT(total, 6e3 * 0.55 + 100 - 200);
+  EXPECT_LT(total, 6e3 * 0.8 + 100);
+}
+
+TEST(NmpcGoalEnv, ObstaclesAreInTheStateAndKeptOutOfByTheFootsteps) {
+  walkgen::NmpcGoalSettings s;
+  s.obstacles = 1;
+  walkgen::NmpcGoalEnv<16> env(s, 9);
+  EXPECT_EQ(env.observation_size(), 5);
+  walkgen::NmpcGoalTask task;
+  task.goal = Eigen::Vector2d(2.0, 0.0);
+  task.obstacles.push_back({1.0, 0.05, 0.15, 0.15});
+  env.reset(task);
+  float obs[5];
+  env.observe(obs);
+  EXPECT_NEAR(obs[4], 0.3f, 1e-6);
+  const float forward[2] = {1.0f, 0.0f};
+  for (int k = 0; k < 60; ++k)
+    if (env.step(forward).done()) break;
+  EXPECT_GE(env.min_obstacle_clearance(), 0.15 - 2e-3);  // the margin, up to the SQP tolerance
+  task.obstacles.clear();
+  EXPECT_THROW(env.reset(task), walkgen::invalid_argument);
+}
+
+// Thesis §11.2.1, shortened: 20 epochs of 8192 steps, seeded. Learning is asserted as a rise of
+// the mean reward per step from the first epoch to the best of the last three by at least 0.1
+// (a random policy makes ≈ 0.01 per step, a good one ≈ 0.3), and test-mode wins.
+TEST(TorchPpo, LearnsTheBenchmarkEnvironment) {
+  torch::set_num_threads(1);
+  walkgen::PpoSettings s;
+  s.actor_hidden = {16, 32};
+  s.critic_hidden = {16, 32};
+  s.activation = walkgen::TorchActivation::relu;
+  s.learning_rate = 1e-3;
+  s.seed = 1;
+  walkgen::PointGoalSettings es;
+  es.max_steps = 200;
+  std::vector<walkgen::PointGoalEnv> envs;
+  for (int e = 0; e < 8; ++e) envs.emplace_back(es, 1000 + e);
+  walkgen::TorchPpo ppo(4, 2, s);
+  walkgen::PpoTrainer<walkgen::PointGoalEnv> trainer(ppo, envs, 512);
+  std::vector<double> rewards;
+  for (int k = 0; k < 20; ++k) rewards.push_back(trainer.run_epoch(8192).mean_reward);
+  const double late = std::max({rewards[17], rewards[18], rewards[19]});
+  std::printf("mean reward per step: first epoch %.4f, best of the last three %.4f\n", rewards[0],
+              late);
+  EXPECT_GT(late, rewards[0] + 0.1);
+  walkgen::PointGoalEnv test(es, 77);
+  const walkgen::PpoTestResult t = walkgen::evaluate_steps(ppo, test, 2000);
+  std::printf("test mode, 2000 steps: %d wins, %d losses\n", t.wins, t.losses);
+  EXPECT_GT(t.wins, 20);
+  EXPECT_EQ(t.losses, 0);
+}
+
+}  // namespace
