@@ -1,0 +1,144 @@
+// Behavioural cloning in the loop (thesis §11.1.2, figures 11.5–11.13): the trained U-Net-LSTM
+// (python/bc_train.py → model.pt, walkgen::VelocityNetwork) drives the humanoid in MuJoCo from
+// its chest cameras (left RGB + WLS disparity, one frame per NMPC tick), in held-out random rooms
+// of each task; or, with --expert, the scripted expert that recorded the demonstrations.
+//
+//   bc_evaluate (--model FILE | --expert) [--tasks LIST] [--layouts N] [--seed S] [--out DIR]
+//     --tasks    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
+//     --layouts  rooms per task (default 20), seeds S, S+1, ... (default 900000: not recorded)
+//     --time-limit T  simulated seconds per episode (default: from the room)
+// Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
+// final distance, NMPC vs measured ZMP mean, command entropy (eq. 9.1), inference ms per frame)
+// and prints the success rate per task.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/navigation_episode.hpp"
+#include "walkgen/torch/velocity_network.hpp"
+
+namespace {
+
+/// Eq. 9.1: entropy [nats] of the commands' histogram (bins 0.005 m/s × 0.015 rad/s).
+double command_entropy(const std::vector<Eigen::Vector3d>& commands) {
+  std::map<std::pair<int, int>, int> bins;
+  for (const auto& c : commands) {
+    ++bins[{int(std::floor(c.x() / 0.005)), int(std::floor(c.z() / 0.015))}];
+  }
+  double h = 0.0;
+  for (const auto& [bin, n] : bins) {
+    const double p = double(n) / double(commands.size());
+    h -= p * std::log(p);
+  }
+  return h;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string model, out = ".";
+  bool expert = false;
+  double time_limit = 0.0;  // 0: from the scene
+  int layouts = 20;
+  std::uint32_t seed = 900000;
+  std::vector<walkgen::NavigationTask> tasks = walkgen::all_navigation_tasks();
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--model" && i + 1 < argc) {
+        model = argv[++i];
+      } else if (a == "--expert") {
+        expert = true;
+      } else if (a == "--layouts" && i + 1 < argc) {
+        layouts = std::atoi(argv[++i]);
+      } else if (a == "--seed" && i + 1 < argc) {
+        seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
+      } else if (a == "--time-limit" && i + 1 < argc) {
+        time_limit = std::atof(argv[++i]);
+      } else if (a == "--out" && i + 1 < argc) {
+        out = argv[++i];
+      } else if (a == "--tasks" && i + 1 < argc) {
+        tasks.clear();
+        std::stringstream list(argv[++i]);
+        for (std::string name; std::getline(list, name, ',');) {
+          tasks.push_back(walkgen::navigation_task_from_string(name));
+        }
+      } else {
+        throw walkgen::invalid_argument("unknown argument '" + a + "'");
+      }
+    }
+    if (model.empty() == !expert || layouts < 1 || tasks.empty()) {
+      throw walkgen::invalid_argument("give --model FILE or --expert, and --layouts >= 1");
+    }
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr,
+                 "bc_evaluate: %s\nusage: bc_evaluate (--model FILE | --expert) [--tasks LIST] "
+                 "[--layouts N] [--seed S] [--time-limit T] [--out DIR]\n",
+                 e.what());
+    return 2;
+  }
+  std::unique_ptr<walkgen::VelocityNetwork> network;
+  if (!expert) {
+    try {
+      network = std::make_unique<walkgen::VelocityNetwork>(model);
+    } catch (const walkgen::invalid_argument& e) {
+      std::fprintf(stderr, "bc_evaluate: %s\n", e.what());
+      return 2;
+    }
+  }
+  std::ofstream csv(out + "/bc_evaluation.csv");
+  csv << "task,seed,reached,collided,fell,time,final_distance,zmp_distance_mean,"
+         "command_entropy,inference_ms\n";
+  int total_reached = 0, total = 0;
+  for (walkgen::NavigationTask task : tasks) {
+    int reached = 0;
+    for (int l = 0; l < layouts; ++l) {
+      const auto scene = walkgen::make_navigation_scene(task, seed + std::uint32_t(l));
+      walkgen_test::ScriptedExpert scripted(scene, walkgen::heicub_settings().max_command);
+      double inference_s = 0.0;
+      long frames = 0;
+      if (network) network->reset();
+      const auto r = walkgen_test::run_navigation_episode(
+          scene,
+          [&](const walkgen_test::NavigationObservation& o) -> Eigen::Vector3d {
+            if (!network) return scripted(o);
+            const auto t0 = std::chrono::steady_clock::now();
+            const Eigen::Vector3d c = network->step(o.images->left, o.disparity->ptr<float>());
+            inference_s +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            ++frames;
+            return c;
+          },
+          [&] {
+            walkgen_test::NavigationOptions options;
+            options.time_limit = time_limit;
+            return options;
+          }());
+      double zmp = 0.0;
+      for (double d : r.zmp_distance) zmp += d;
+      zmp /= double(std::max<std::size_t>(1, r.zmp_distance.size()));
+      const double ms = frames > 0 ? 1e3 * inference_s / double(frames) : 0.0;
+      reached += r.reached;
+      csv << walkgen::to_string(task) << ',' << scene.seed << ',' << int(r.reached) << ','
+          << int(r.collided) << ',' << int(r.fell) << ',' << r.time << ',' << r.final_distance
+          << ',' << zmp << ',' << command_entropy(r.commands) << ',' << ms << '\n';
+      std::printf("%-10s seed %u: %s after %5.1f s, %.2f m from the target%s%s\n",
+                  walkgen::to_string(task), scene.seed, r.reached ? "reached" : "FAILED ", r.time,
+                  r.final_distance, r.message.empty() ? "" : ": ", r.message.c_str());
+      std::fflush(stdout);
+    }
+    std::printf("bc_evaluate: %s: %d / %d reached\n", walkgen::to_string(task), reached, layouts);
+    total_reached += reached;
+    total += layouts;
+  }
+  std::printf("bc_evaluate: %d / %d episodes reached the target (%s); %s/bc_evaluation.csv\n",
+              total_reached, total, expert ? "scripted expert" : model.c_str(), out.c_str());
+  return 0;
+}

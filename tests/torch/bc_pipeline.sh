@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Behavioural cloning end to end, tiny (issue 8): records two expert episodes in random rooms,
+# trains the U-Net-LSTM on them for a few steps on the CPU, and drives the robot with it.
+#   bc_pipeline.sh <record_demonstrations> <bc_evaluate> <bc_train.py> <output folder>
+set -euo pipefail
+record=$1
+evaluate=$2
+train=$3
+out=$4
+rm -rf "$out"
+mkdir -p "$out"
+python=/usr/bin/python3
+"$python" -c "import torch, PIL, matplotlib" || { echo "bc_pipeline: $python lacks torch, PIL or matplotlib (scripts/setup.sh installs python3-torch, python3-matplotlib)"; exit 1; }
+
+"$record" --out "$out/data" --episodes 2 --tasks straight --seed 77
+"$python" "$train" "$out/data" "$out/model" --epochs 3 --width 4 --threads 2
+"$evaluate" --model "$out/model/model.pt" --tasks straight --layouts 1 --time-limit 16 --out "$out"
+
+"$python" - "$out" <<'PY'
+import csv, os, sys
+out = sys.argv[1]
+def fail(msg):
+    sys.exit("bc_pipeline: FAILED: " + msg)
+for f in ("model/model.pt", "model/training.png", "model/histograms.png"):
+    if not os.path.getsize(os.path.join(out, f)) > 0:
+        fail("missing " + f)
+log = list(csv.DictReader(open(os.path.join(out, "model/training_log.csv"))))
+if len(log) != 3:
+    fail("expected 3 epochs in training_log.csv, got %d" % len(log))
+first, last = float(log[0]["train_mse"]), float(log[-1]["train_mse"])
+if not last < first:
+    fail("the training loss did not fall: %g -> %g" % (first, last))
+kl = {r["velocity"]: float(r["kl_divergence"]) for r in csv.DictReader(open(os.path.join(out, "model/histograms.csv")))}
+if set(kl) != {"v_x", "omega_z"} or not all(v >= 0 for v in kl.values()):
+    fail("histograms.csv: %s" % kl)
+rows = list(csv.DictReader(open(os.path.join(out, "bc_evaluation.csv"))))
+if len(rows) != 1 or float(rows[0]["inference_ms"]) <= 0 or float(rows[0]["time"]) < 15:
+    fail("bc_evaluation.csv: %s" % rows)
+if rows[0]["fell"] != "0":
+    fail("the robot fell under the network's commands")
+print("bc_pipeline: training MSE %.4f -> %.4f, KL v_x %.3f omega %.3f, %.1f s in the loop at %.2f ms per frame"
+      % (first, last, kl["v_x"], kl["omega_z"], float(rows[0]["time"]), float(rows[0]["inference_ms"])))
+PY
