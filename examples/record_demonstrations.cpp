@@ -32,11 +32,7 @@ int main(int argc, char** argv) {
       } else if (a == "--seed" && i + 1 < argc) {
         seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
       } else if (a == "--tasks" && i + 1 < argc) {
-        tasks.clear();
-        std::stringstream list(argv[++i]);
-        for (std::string name; std::getline(list, name, ',');) {
-          tasks.push_back(walkgen::navigation_task_from_string(name));
-        }
+        tasks = walkgen::navigation_tasks_from_list(argv[++i]);
       } else {
         throw walkgen::invalid_argument("unknown argument '" + a + "'");
       }

@@ -49,6 +49,10 @@ TEST(NavigationScene, EachTaskHasItsGeometryAndTheSameSeedGivesTheSameRoom) {
   EXPECT_NE(a.target, c.target);
   EXPECT_EQ(walkgen::navigation_task_from_string("scan"), NavigationTask::scan);
   EXPECT_THROW(walkgen::navigation_task_from_string("dance"), walkgen::invalid_argument);
+  const auto list = walkgen::navigation_tasks_from_list("scan,obstacle");
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list[1], NavigationTask::obstacle);
+  EXPECT_THROW(walkgen::navigation_tasks_from_list("scan,,obstacle"), walkgen::invalid_argument);
 }
 
 TEST(NavigationScene, ThePersonWalksBackAndForthAtItsSpeed) {

@@ -9,6 +9,7 @@
 /// can steer through it (walkgen::GoToTarget) and an evaluation can tell success from collision.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -62,6 +63,19 @@ inline NavigationTask navigation_task_from_string(const std::string& name) {
   check_argument(false, "navigation_task_from_string",
                  "straight, curved, obstacle, scan, dynamic or distractor", "'" + name + "'");
   return NavigationTask::straight;
+}
+
+/// Tasks from a comma-separated list of names ("straight,scan").
+/// @throws walkgen::invalid_argument for an unknown name or an empty list.
+inline std::vector<NavigationTask> navigation_tasks_from_list(const std::string& list) {
+  std::vector<NavigationTask> tasks;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    tasks.push_back(navigation_task_from_string(list.substr(start, comma - start)));
+    start = comma + 1;
+  }
+  return tasks;
 }
 
 /// A person walking back and forth between two points at a constant speed.
