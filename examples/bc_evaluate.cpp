@@ -7,6 +7,8 @@
 //     --tasks    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
 //     --layouts  rooms per task (default 20), seeds S, S+1, ... (default 900000: not recorded)
 //     --time-limit T  simulated seconds per episode (default: from the room)
+//     --dagger DIR    with --model: record what the robot sees while the network drives, labelled
+//                     with the expert's commands (DAgger, against the drift of plain cloning)
 // Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
 // final distance, NMPC vs measured ZMP mean, command entropy (eq. 9.1), inference ms per frame)
 // and prints the success rate per task.
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
   std::string model, out = ".";
   bool expert = false;
   double time_limit = 0.0;  // 0: from the scene
+  std::string dagger;       // record the expert's labels of the network's states here
   int layouts = 20;
   std::uint32_t seed = 900000;
   std::vector<walkgen::NavigationTask> tasks = walkgen::all_navigation_tasks();
@@ -62,6 +65,8 @@ int main(int argc, char** argv) {
         seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
       } else if (a == "--time-limit" && i + 1 < argc) {
         time_limit = std::atof(argv[++i]);
+      } else if (a == "--dagger" && i + 1 < argc) {
+        dagger = argv[++i];
       } else if (a == "--out" && i + 1 < argc) {
         out = argv[++i];
       } else if (a == "--tasks" && i + 1 < argc) {
@@ -76,7 +81,7 @@ int main(int argc, char** argv) {
   } catch (const walkgen::invalid_argument& e) {
     std::fprintf(stderr,
                  "bc_evaluate: %s\nusage: bc_evaluate (--model FILE | --expert) [--tasks LIST] "
-                 "[--layouts N] [--seed S] [--time-limit T] [--out DIR]\n",
+                 "[--layouts N] [--seed S] [--time-limit T] [--dagger DIR] [--out DIR]\n",
                  e.what());
     return 2;
   }
@@ -98,6 +103,7 @@ int main(int argc, char** argv) {
     for (int l = 0; l < layouts; ++l) {
       const auto scene = walkgen::make_navigation_scene(task, seed + std::uint32_t(l));
       walkgen_test::ScriptedExpert scripted(scene, walkgen::heicub_settings().max_command);
+      std::unique_ptr<walkgen::DemonstrationRecorder> recorder;
       double inference_s = 0.0;
       long frames = 0;
       if (network) network->reset();
@@ -115,6 +121,15 @@ int main(int argc, char** argv) {
           [&] {
             walkgen_test::NavigationOptions options;
             options.time_limit = time_limit;
+            if (!dagger.empty() && network) {
+              recorder = std::make_unique<walkgen::DemonstrationRecorder>(
+                  dagger, std::string("dagger_") + walkgen::to_string(task) + "_" +
+                              std::to_string(scene.seed));
+              options.recorder = recorder.get();
+              options.label = [&](const walkgen_test::NavigationObservation& o) {
+                return scripted(o);
+              };
+            }
             return options;
           }());
       double zmp = 0.0;

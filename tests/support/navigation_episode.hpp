@@ -33,7 +33,10 @@ using NavigationPolicy = std::function<Eigen::Vector3d(const NavigationObservati
 struct NavigationOptions {
   double time_limit = 0.0;      ///< [s] simulated; 0: from the scene (distance and turning)
   double reach_distance = 0.3;  ///< success: the true CoM this close to the target's centre
-  walkgen::DemonstrationRecorder* recorder = nullptr;          ///< records every tick when set
+  walkgen::DemonstrationRecorder* recorder = nullptr;  ///< records every tick when set
+  /// The command the recorder records, when set (DAgger: the expert labels the states that
+  /// the learner visits while the learner drives); else the executed command.
+  NavigationPolicy label;
   std::function<void(walkgen::MujocoRobot&, double)> on_tick;  ///< e.g. to render a video
 };
 
@@ -167,8 +170,10 @@ inline NavigationResult run_navigation_episode(const walkgen::NavigationScene& s
     obs.scene = &scene;
     Eigen::Vector3d command = policy(obs);
     command = command.cwiseMax(-0.95 * settings.max_command).cwiseMin(0.95 * settings.max_command);
-    if (options.recorder != nullptr)
-      options.recorder->record(t, images.left, frame.disparity, command);
+    if (options.recorder != nullptr) {
+      const Eigen::Vector3d label = options.label ? options.label(obs) : command;
+      options.recorder->record(t, images.left, frame.disparity, label);
+    }
     result.commands.push_back(command);
     loop.set_command(command);
     const walkgen::LoopTick& tick = loop.tick();

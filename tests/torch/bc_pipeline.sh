@@ -14,7 +14,8 @@ python=/usr/bin/python3
 
 "$record" --out "$out/data" --episodes 2 --tasks straight --seed 77
 "$python" "$train" "$out/data" "$out/model" --epochs 3 --width 4 --threads 2
-"$evaluate" --model "$out/model/model.pt" --tasks straight --layouts 1 --time-limit 16 --out "$out"
+"$evaluate" --model "$out/model/model.pt" --tasks straight --layouts 1 --time-limit 16 --out "$out" \
+  --dagger "$out/data"
 
 "$python" - "$out" <<'PY'
 import csv, os, sys
@@ -38,6 +39,11 @@ if len(rows) != 1 or float(rows[0]["inference_ms"]) <= 0 or float(rows[0]["time"
     fail("bc_evaluation.csv: %s" % rows)
 if rows[0]["fell"] != "0":
     fail("the robot fell under the network's commands")
+dagger = [l.split() for l in open(os.path.join(out, "data/index.txt")) if l.startswith("rgb/dagger_")]
+if len(dagger) < 40:
+    fail("DAgger recorded %d frames, expected one per tick of 16 s" % len(dagger))
+if not any(abs(float(d[6])) > 0.01 or float(d[4]) > 0.01 for d in dagger):
+    fail("the DAgger labels are not the expert's commands: %s" % dagger[:3])
 print("bc_pipeline: training MSE %.4f -> %.4f, KL v_x %.3f omega %.3f, %.1f s in the loop at %.2f ms per frame"
       % (first, last, kl["v_x"], kl["omega_z"], float(rows[0]["time"]), float(rows[0]["inference_ms"])))
 PY
