@@ -183,7 +183,7 @@ class WalkingLoop {
     target.left_foot = {Eigen::Vector3d(feet[0].x, feet[0].y, 0.0), feet[0].q};
     target.right_foot = {Eigen::Vector3d(feet[1].x, feet[1].y, 0.0), feet[1].q};
     target.hold_upright((feet[0].q + feet[1].q) / 2.0);
-    const Eigen::Vector3d c0 = tree_.center_of_mass(ws_);
+    const Eigen::Vector3d c0 = com_W();
     const Eigen::Vector3d c1(s.com_x[0], s.com_y[0], s.com_z);
     const double dt = interp_.command_period();
     const int n = std::max(1, int(std::lround(loop_.transfer_time / dt)));
@@ -196,7 +196,7 @@ class WalkingLoop {
     }
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
-    const Eigen::Vector3d c = tree_.center_of_mass(ws_);
+    const Eigen::Vector3d c = com_W();
     typename Mpc::State st;
     st.com_x << c.x(), 0.0, 0.0;
     st.com_y << c.y(), 0.0, 0.0;
@@ -238,11 +238,11 @@ class WalkingLoop {
       out.base_height = m.base_height;
       to_tree_order(m.q);
       place_on_sole(plan_[k].support_foot, planned_support(plan_[k]));
-      out.com_measured_W = tree_.center_of_mass(ws_);
+      out.com_measured_W = com_W();
       for (int f = 0; f < 2; ++f) {  // the same wrenches, at the sensor poses of this FK
         ft_fk_[std::size_t(f)] = m.ft[std::size_t(f)];
-        ft_fk_[std::size_t(f)].pose_W_S.linear() = ws_.rotation_W(sensor_[f]);
-        ft_fk_[std::size_t(f)].pose_W_S.translation() = ws_.position_W(sensor_[f]);
+        ft_fk_[std::size_t(f)].pose_W_S.linear() = link_rotation_W(sensor_[f]);
+        ft_fk_[std::size_t(f)].pose_W_S.translation() = link_position_W(sensor_[f]);
       }
       out.zmp = measured_zmp(ft_fk_, robot_.info().ft_sensor_height);
       if (!running) {
@@ -296,25 +296,30 @@ class WalkingLoop {
     return {f.motion.x.position, f.motion.y.position, f.motion.q.position};
   }
 
-  /// Forward kinematics of q_tree_ with the base placed so that sole `foot` lies flat at `pose`
-  /// (the sole's own tilt relative to the base is kept: a flat sole gives the true base).
+  /// Forward kinematics of q_tree_ in the base frame (one FK), and the base pose in W that puts
+  /// sole `foot` flat at `pose` (the sole's own tilt relative to the base is kept: a flat sole
+  /// gives the true base). com_W(), link_position_W() and link_rotation_W() then map to W.
   void place_on_sole(Foot foot, const FootPose<double>& pose) {
     const int sole = sole_[foot == Foot::left ? 0 : 1];
     tree_.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q_tree_, ws_);
-    const Eigen::Matrix3d R_base_sole = ws_.rotation_W(sole);
-    const Eigen::Vector3d p_base_sole = ws_.position_W(sole);
+    const Eigen::Matrix3d& R_base_sole = ws_.rotation_W(sole);
     // Yaw of the sole in the base frame, so that the sole's yaw in W becomes pose.q.
     const double sole_yaw = std::atan2(R_base_sole(1, 0), R_base_sole(0, 0));
     base_R_W_ = Eigen::AngleAxisd(pose.q - sole_yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    base_p_W_ = Eigen::Vector3d(pose.x, pose.y, 0.0) - base_R_W_ * p_base_sole;
-    tree_.forward_kinematics(base_p_W_, base_R_W_, q_tree_, ws_);
+    base_p_W_ = Eigen::Vector3d(pose.x, pose.y, 0.0) - base_R_W_ * ws_.position_W(sole);
   }
+
+  Eigen::Vector3d com_W() const { return base_p_W_ + base_R_W_ * tree_.center_of_mass(ws_); }
+  Eigen::Vector3d link_position_W(int link) const {
+    return base_p_W_ + base_R_W_ * ws_.position_W(link);
+  }
+  Eigen::Matrix3d link_rotation_W(int link) const { return base_R_W_ * ws_.rotation_W(link); }
 
   /// The pose (x, y, yaw) of sole `foot` after place_on_sole().
   FootPose<double> sole_pose(Foot foot) const {
     const int sole = sole_[foot == Foot::left ? 0 : 1];
-    const Eigen::Vector3d& p = ws_.position_W(sole);
-    const Eigen::Matrix3d& R = ws_.rotation_W(sole);
+    const Eigen::Vector3d p = link_position_W(sole);
+    const Eigen::Matrix3d R = link_rotation_W(sole);
     return {p.x(), p.y(), std::atan2(R(1, 0), R(0, 0))};
   }
 
@@ -324,7 +329,7 @@ class WalkingLoop {
     to_tree_order(m.q);
     typename Mpc::State st = mpc_.state();
     place_on_sole(st.support_foot, st.support);
-    const Eigen::Vector3d c = tree_.center_of_mass(ws_);
+    const Eigen::Vector3d c = com_W();
     tick_.com_error = Eigen::Vector2d(c.x() - st.com_x[0], c.y() - st.com_y[0]);
     st.com_x[0] += loop_.feedback_gain * tick_.com_error.x();
     st.com_y[0] += loop_.feedback_gain * tick_.com_error.y();
