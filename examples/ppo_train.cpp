@@ -146,16 +146,7 @@ void train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, int rollout_steps,
 int run_benchmark(const Options& o) {
   // Thesis §11.2.1: actor and critic 16-32 ReLU, tanh mean, ε = 0.2, c1 = 0.5; 10 000 steps per
   // epoch, an update every 4096 actions, minibatch 512, 8 epochs; Adam.
-  walkgen::PpoSettings s;
-  s.actor_hidden = {16, 32};
-  s.critic_hidden = {16, 32};
-  s.activation = walkgen::TorchActivation::relu;
-  s.learning_rate = 1e-3;
-  s.initial_std = 0.5;
-  s.entropy_coef = 0.0;
-  s.minibatch = 512;
-  s.epochs = 8;
-  s.gamma = 0.99;
+  walkgen::PpoSettings s = walkgen::point_goal_ppo_settings();
   s.seed = o.seed;
   walkgen::PointGoalSettings env_settings;  // test mode: no step budget (the thesis)
   walkgen::PointGoalSettings train_settings = env_settings;
@@ -220,18 +211,7 @@ int run_benchmark(const Options& o) {
 
 int run_nmpc(const Options& o) {
   // Thesis §11.2.2: 64-64 tanh networks, ε = 0.2, c1 = 0.5, Adam; minibatches over a rollout.
-  walkgen::PpoSettings s;
-  s.actor_hidden = {64, 64};
-  s.critic_hidden = {64, 64};
-  s.activation = walkgen::TorchActivation::tanh;
-  s.learning_rate = 1e-3;
-  s.initial_std = 0.6;
-  s.entropy_coef = 0.0;
-  s.minibatch = 256;
-  s.epochs = 5;
-  s.gamma = 0.99;
-  s.lambda = 0.95;
-  s.reward_scale = 1e-3;  // returns of ~10⁴ (weights 2·10³, 6·10³) to ~10 for the critic
+  walkgen::PpoSettings s = walkgen::nmpc_goal_ppo_settings();
   s.seed = o.seed;
   walkgen::NmpcGoalSettings env_settings;
   env_settings.obstacles = o.obstacles;

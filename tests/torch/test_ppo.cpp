@@ -260,11 +260,7 @@ TEST(NmpcGoalEnv, ObstaclesAreInTheStateAndKeptOutOfByTheFootsteps) {
 // (a random policy makes ≈ 0.01 per step, a good one ≈ 0.3), and test-mode wins.
 TEST(TorchPpo, LearnsTheBenchmarkEnvironment) {
   torch::set_num_threads(1);
-  walkgen::PpoSettings s;
-  s.actor_hidden = {16, 32};
-  s.critic_hidden = {16, 32};
-  s.activation = walkgen::TorchActivation::relu;
-  s.learning_rate = 1e-3;
+  walkgen::PpoSettings s = walkgen::point_goal_ppo_settings();
   s.seed = 1;
   walkgen::PointGoalSettings es;
   es.max_steps = 200;

@@ -19,6 +19,41 @@
 
 namespace walkgen {
 
+/// PPO for the benchmarking environment (thesis §11.2.1): actor and critic 16-32 ReLU, tanh
+/// mean, ε = 0.2, c1 = 0.5, Adam at 10⁻³, minibatch 512, 8 epochs per update.
+inline PpoSettings point_goal_ppo_settings() {
+  PpoSettings s;
+  s.actor_hidden = {16, 32};
+  s.critic_hidden = {16, 32};
+  s.activation = TorchActivation::relu;
+  s.learning_rate = 1e-3;
+  s.initial_std = 0.5;
+  s.entropy_coef = 0.0;
+  s.minibatch = 512;
+  s.epochs = 8;
+  s.gamma = 0.99;
+  return s;
+}
+
+/// PPO for the NMPC environment (thesis §11.2.2): 64-64 tanh, Adam at 10⁻³, σ from 0.6,
+/// minibatch 256, 5 epochs, rewards × 10⁻³ for the critic (returns of ~10⁴ from the weights
+/// 2·10³ and 6·10³ become ~10).
+inline PpoSettings nmpc_goal_ppo_settings() {
+  PpoSettings s;
+  s.actor_hidden = {64, 64};
+  s.critic_hidden = {64, 64};
+  s.activation = TorchActivation::tanh;
+  s.learning_rate = 1e-3;
+  s.initial_std = 0.6;
+  s.entropy_coef = 0.0;
+  s.minibatch = 256;
+  s.epochs = 5;
+  s.gamma = 0.99;
+  s.lambda = 0.95;
+  s.reward_scale = 1e-3;
+  return s;
+}
+
 /// Statistics of one training epoch (a fixed number of environment steps).
 struct PpoEpoch {
   int epoch = 0;             ///< 1-based
