@@ -33,7 +33,7 @@ endfunction()
 # A GoogleTest executable; each TEST() becomes one ctest through gtest_discover_tests.
 # Default label: "unit".
 function(walkgen_add_test)
-  cmake_parse_arguments(_arg "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(_arg "" "NAME;FIXTURES_REQUIRED" "SOURCES;LIBS;LABELS" ${ARGN})
   _walkgen_check_args(walkgen_add_test)
   if(NOT _arg_SOURCES)
     message(FATAL_ERROR "walkgen_add_test(${_arg_NAME}): SOURCES is required")
@@ -70,8 +70,13 @@ function(walkgen_add_test)
   set(_labels_file "${CMAKE_CURRENT_BINARY_DIR}/${_arg_NAME}_labels.cmake")
   file(WRITE "${_labels_file}"
        "if(${_arg_NAME}_TESTS)\n"
-       "  set_tests_properties(\${${_arg_NAME}_TESTS} PROPERTIES LABELS \"${_arg_LABELS}\")\n"
-       "endif()\n")
+       "  set_tests_properties(\${${_arg_NAME}_TESTS} PROPERTIES LABELS \"${_arg_LABELS}\")\n")
+  if(_arg_FIXTURES_REQUIRED)  # e.g. a model that an example test trains first
+    file(APPEND "${_labels_file}"
+         "  set_tests_properties(\${${_arg_NAME}_TESTS} PROPERTIES FIXTURES_REQUIRED "
+         "\"${_arg_FIXTURES_REQUIRED}\")\n")
+  endif()
+  file(APPEND "${_labels_file}" "endif()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${_labels_file}")
 endfunction()
 

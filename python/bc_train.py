@@ -1,26 +1,34 @@
 #!/usr/bin/python3
 """Behavioural cloning (thesis §7.1, §11.1.1, figure 11.2): trains the U-Net-LSTM on recorded
-demonstrations (examples/record_demonstrations: index.txt, rgb/, disparity/) and exports it as
-TorchScript for the C++ controller.
+demonstrations (examples/record_demonstrations, bc_evaluate --dagger: index.txt, rgb/,
+disparity/) and exports it as TorchScript for the C++ controller.
 
-    /usr/bin/python3 python/bc_train.py DATA OUT [--epochs 30] [--batch 32] [--lr 1e-3]
-                                          [--sequence 5] [--chunk 16] [--width 8] [--seed 0]
-                                          [--max-steps N]
+    /usr/bin/python3 python/bc_train.py DATA [DATA ...] OUT [--epochs 30] [--batch 32]
+                                          [--lr 1e-3] [--sequence 5] [--chunk 16] [--width 8]
+                                          [--seed 0] [--max-steps N] [--threads 2]
 
 Pre-processing (the C++ side, walkgen/torch/velocity_network.hpp, does the same): the left RGB
 image and the WLS disparity (240 x 320) are averaged over 4 x 4 blocks to 60 x 80; RGB is scaled
 to [0, 1], disparity [px] divided by 32 (D of the thesis); the four channels are stacked to
-RGBD. Samples are windows of consecutive frames of one episode (Chunks), the loss on the command after
-each frame with at least `sequence` frames of history (the thesis's sequences of 5): (v_x, omega_z) divided by the generator's limits (Heicub's
-0.034 m/s and 0.075 rad/s), so the network's tanh output times the limits is the command.
+RGBD. The processed frames of each folder are cached in DATA/bc_frames_60x80.npy.
+
+Samples are the thesis's sequences: the command after a frame is regressed from that frame and
+the `sequence` - 1 before it (5 frames, 2 s at the NMPC's 0.4 s ticks), each frame encoded by
+the U-Net and a fully connected layer, the sequence run through the LSTM from a zero state; an
+episode's first frame stands in for the frames before it (the robot stands still then). The
+C++ side keeps the last `sequence` encoded frames and does the same, so training and the loop
+see the same inputs. For speed, a batch holds windows of `chunk` consecutive frames, each frame
+encoded once, with one sequence ending at each of its last chunk - sequence + 1 frames. Targets:
+(v_x, omega_z) divided by the generator's limits (Heicub's 0.034 m/s and 0.075 rad/s), so the
+network's tanh output times the limits is the command.
 
 Split: 90 % of the episodes for training, 10 % (at least one) for validation, so that the
 validation frames come from rooms the network has not seen (the thesis split frames at random).
 The weights with the best validation loss are kept. Writes to OUT: model.pt (TorchScript, with
-a `step(frame, h, c)` method for frame-by-frame inference), training_log.csv (epoch, train and
-validation MSE, seconds), training.png (the loss curves, figure 11.3), and histograms.png and
-histograms.csv: ground truth vs prediction on the validation split with the KL divergence
-(eq. 11.1) and the entropy (eq. 9.1) of each velocity.
+`encode(frame)`, `head(features)` and the attributes `sequence` and `hidden`), training_log.csv
+(epoch, train and validation MSE, seconds), training.png (the loss curves, figure 11.3), and
+histograms.png and histograms.csv: ground truth vs prediction on the validation split with the
+KL divergence (eq. 11.1) and the entropy (eq. 9.1) of each velocity.
 """
 import argparse
 import csv
@@ -59,7 +67,8 @@ def load_frame(folder, rgb_path, disparity_path):
     return frame
 
 
-def read_index(folder):
+def read_index(folder, prefix=""):
+    """Episodes of a folder's index.txt: {prefix + name: [(t, rgb, disparity, v_x, omega)]}."""
     path = os.path.join(folder, "index.txt")
     if not os.path.exists(path):
         sys.exit("bc_train: no index.txt in %s (record with examples/record_demonstrations)" % folder)
@@ -71,42 +80,67 @@ def read_index(folder):
         if len(fields) != 7:
             sys.exit("bc_train: %s:%d: expected 7 fields, got %d" % (path, number, len(fields)))
         rgb, disparity, episode = fields[:3]
-        t, vx, vy, omega = (float(x) for x in fields[3:])
-        episodes.setdefault(episode, []).append((t, rgb, disparity, vx, omega))
+        try:
+            t, vx, vy, omega = (float(x) for x in fields[3:])
+        except ValueError:
+            sys.exit("bc_train: %s:%d: time and command must be numbers" % (path, number))
+        if not all(math.isfinite(x) for x in (t, vx, vy, omega)):
+            sys.exit("bc_train: %s:%d: non-finite time or command" % (path, number))
+        episodes.setdefault(prefix + episode, []).append((t, folder, rgb, disparity, vx, omega))
     for frames in episodes.values():
         frames.sort()
     return episodes
 
 
-class Chunks(torch.utils.data.Dataset):
-    """Windows of `chunk` consecutive frames of one episode with the command after each frame.
-    The loss counts a frame once it has `sequence` frames of history (the thesis's sequences
-    of 5), or from the first frame of an episode (the robot starts without history); windows
-    overlap by sequence - 1 frames so that every frame counts exactly once. Encoding each frame
-    once per window instead of once per 5-frame sequence makes CPU training about 4x cheaper."""
+def load_frames(folder, frames):
+    """The processed frames of `frames` (rows of read_index), from the folder's cache when it
+    holds them (keyed by the image names), else from the PNG files (and then cached)."""
+    cache = os.path.join(folder, "bc_frames_60x80.npy")
+    names = os.path.join(folder, "bc_frames_60x80.txt")
+    wanted = [f[2] for f in frames]
+    if os.path.exists(cache) and os.path.exists(names):
+        cached = open(names).read().split()
+        if set(wanted) <= set(cached):
+            data = np.load(cache, mmap_mode="r")
+            where = {n: i for i, n in enumerate(cached)}
+            return [np.asarray(data[where[n]], dtype=np.float32) for n in wanted]
+    out = [load_frame(folder, f[2], f[3]) for f in frames]
+    np.save(cache, np.stack(out).astype(np.float16))
+    with open(names, "w") as f:
+        f.write("\n".join(wanted) + "\n")
+    return out
 
-    def __init__(self, folder, episodes, sequence, chunk):
+
+class Chunks(torch.utils.data.Dataset):
+    """Windows of `chunk` consecutive frames of one episode (its first frame repeated
+    sequence - 1 times in front) with the command after each of the last chunk - sequence + 1
+    frames, which then end a full sequence; a mask marks the ones past the episode's end.
+    Consecutive windows overlap by sequence - 1 frames, so that every frame is a target once."""
+
+    def __init__(self, episodes, frames, sequence, chunk):
+        """episodes: lists of rows of read_index; frames: {(folder, rgb): processed frame}."""
         self.frames, self.labels, self.items = [], [], []
         stride = chunk - sequence + 1
-        for frames in episodes:
+        for rows in episodes:
             start = len(self.frames)
-            for _, rgb, disparity, vx, omega in frames:
-                self.frames.append(torch.from_numpy(load_frame(folder, rgb, disparity)))
+            for _, folder, rgb, _, vx, omega in [rows[0]] * (sequence - 1) + rows:
+                self.frames.append(torch.from_numpy(frames[(folder, rgb)]))
                 self.labels.append(torch.tensor([vx / MAX_COMMAND[0], omega / MAX_COMMAND[1]],
                                                 dtype=torch.float32).clamp(-1.0, 1.0))
             end = len(self.frames)
             s = start
             while True:
                 ids = [min(i, end - 1) for i in range(s, s + chunk)]  # the last frame repeats
-                mask = [0.0] * chunk
-                first = 0 if s == start else sequence - 1
-                for k in range(first, chunk):
-                    if s + k < end:
-                        mask[k] = 1.0
-                self.items.append((ids, torch.tensor(mask)))
+                mask = torch.tensor([1.0 if s + k < end else 0.0
+                                     for k in range(sequence - 1, chunk)])
+                self.items.append((ids, mask))
                 if s + chunk >= end:
                     break
                 s += stride
+        self.sequence = sequence
+
+    def targets(self):
+        return sum(int(m.sum().item()) for _, m in self.items)
 
     def __len__(self):
         return len(self.items)
@@ -114,34 +148,39 @@ class Chunks(torch.utils.data.Dataset):
     def __getitem__(self, i):
         ids, mask = self.items[i]
         return (torch.stack([self.frames[j] for j in ids]),
-                torch.stack([self.labels[j] for j in ids]), mask)
+                torch.stack([self.labels[j] for j in ids[self.sequence - 1:]]), mask)
 
 
 def block(inputs, outputs):
-    return nn.Sequential(nn.Conv2d(inputs, outputs, 3, padding=1), nn.ReLU(inplace=True),
-                         nn.Conv2d(outputs, outputs, 3, padding=1), nn.ReLU(inplace=True))
+    """Two 3 x 3 convolutions, each batch-normalised (without it, most ReLUs of a small
+    network died within the first steps and the encoder gave every frame the same features)."""
+    return nn.Sequential(nn.Conv2d(inputs, outputs, 3, padding=1, bias=False),
+                         nn.BatchNorm2d(outputs), nn.ReLU(inplace=True),
+                         nn.Conv2d(outputs, outputs, 3, padding=1, bias=False),
+                         nn.BatchNorm2d(outputs), nn.ReLU(inplace=True))
 
 
 class UNetLstm(nn.Module):
     """Figure 11.2: a U-Net (two poolings, skip connections by concatenation) per frame, a
-    fully connected layer, an LSTM over the frames, and a tanh regression of (v_x, omega_z)."""
+    fully connected layer, an LSTM over the sequence, and a tanh regression of (v_x, omega_z)."""
 
-    def __init__(self, width=16, hidden=64):
+    def __init__(self, width=16, hidden=64, sequence=5):
         super().__init__()
         w = width
         self.down1, self.down2, self.bottom = block(4, w), block(w, 2 * w), block(2 * w, 4 * w)
         self.up2, self.up1 = block(6 * w, 2 * w), block(3 * w, w)
         self.pool = nn.MaxPool2d(2)
         self.upsample = nn.Upsample(scale_factor=2.0, mode="bilinear", align_corners=False)
-        self.squeeze = nn.Sequential(nn.Conv2d(w, 8, 1), nn.ReLU(inplace=True),
-                                     nn.AdaptiveAvgPool2d((6, 8)))
+        self.squeeze = nn.Sequential(nn.Conv2d(w, 8, 1), nn.AdaptiveAvgPool2d((6, 8)))
         self.fc = nn.Sequential(nn.Linear(8 * 6 * 8, hidden), nn.ReLU(inplace=True))
         self.lstm = nn.LSTM(hidden, hidden, batch_first=True)
         self.out = nn.Linear(hidden, 2)
         self.hidden = hidden
+        self.sequence = sequence
 
+    @torch.jit.export
     def encode(self, x):
-        """One frame per row of x (N, 4, 60, 80) -> features (N, hidden)."""
+        """Frames (N, 4, 60, 80) -> features (N, hidden)."""
         d1 = self.down1(x)
         d2 = self.down2(self.pool(d1))
         b = self.bottom(self.pool(d2))
@@ -149,24 +188,27 @@ class UNetLstm(nn.Module):
         u1 = self.up1(torch.cat([self.upsample(u2), d1], dim=1))
         return self.fc(torch.flatten(self.squeeze(u1), 1))
 
-    def forward(self, x):
-        """x (B, T, 4, 60, 80) -> (B, 2) in [-1, 1], for the latest frame."""
-        return self.forward_all(x)[:, -1]
-
-    def forward_all(self, x):
-        """x (B, T, 4, 60, 80) -> (B, T, 2): the command after each frame of the sequences."""
-        b, t = x.shape[0], x.shape[1]
-        frames = x.reshape(b * t, x.shape[2], x.shape[3], x.shape[4])
-        features = self.encode(frames).reshape(b, t, self.hidden)
-        y, _ = self.lstm(features)
-        return torch.tanh(self.out(y))
-
     @torch.jit.export
-    def step(self, frame, h, c):
-        """One frame (1, 4, 60, 80) and the LSTM state (1, 1, hidden) each -> (1, 2), h, c."""
-        features = self.encode(frame).unsqueeze(1)
-        y, (h2, c2) = self.lstm(features, (h, c))
-        return torch.tanh(self.out(y[:, -1])), h2, c2
+    def head(self, features):
+        """Sequences of features (N, T, hidden), oldest first -> (N, 2) in [-1, 1]: the command
+        after the latest frame, the LSTM starting from a zero state."""
+        y, _ = self.lstm(features)
+        return torch.tanh(self.out(y[:, -1]))
+
+    def forward(self, x):
+        """Sequences x (B, T, 4, 60, 80) -> (B, 2), the command after the latest frame."""
+        b, t = x.shape[0], x.shape[1]
+        return self.head(self.encode(x.reshape(b * t, 4, x.shape[3], x.shape[4])).reshape(b, t, -1))
+
+    def forward_chunks(self, x):
+        """Windows x (B, C, 4, 60, 80) -> (B, C - sequence + 1, 2): the command after each
+        frame that ends a full sequence, each frame encoded once."""
+        b, c = x.shape[0], x.shape[1]
+        features = self.encode(x.reshape(b * c, 4, x.shape[3], x.shape[4])).reshape(b, c, -1)
+        n = c - self.sequence + 1
+        windows = features.unfold(1, self.sequence, 1)  # (B, n, hidden, sequence)
+        windows = windows.permute(0, 1, 3, 2).reshape(b * n, self.sequence, self.hidden)
+        return self.head(windows).reshape(b, n, 2)
 
 
 def histograms(truth, prediction, out, bins):
@@ -204,7 +246,7 @@ def histograms(truth, prediction, out, bins):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("data")
+    parser.add_argument("data", nargs="+", help="folders with index.txt (recordings, DAgger)")
     parser.add_argument("out")
     parser.add_argument("--epochs", type=int, default=30)
     parser.add_argument("--batch", type=int, default=32)
@@ -226,23 +268,31 @@ def main():
     torch.set_num_threads(args.threads)
     os.makedirs(args.out, exist_ok=True)
 
-    episodes = read_index(args.data)
+    episodes = {}
+    for i, folder in enumerate(args.data):
+        episodes.update(read_index(folder, "%d/" % i if len(args.data) > 1 else ""))
+    frames = {}
+    for folder in args.data:
+        rows = [r for e in episodes.values() for r in e if r[1] == folder]
+        print("bc_train: loading %d frames of %s" % (len(rows), folder), flush=True)
+        for r, f in zip(rows, load_frames(folder, rows)):
+            frames[(folder, r[2])] = f
     names = sorted(episodes)
     random.Random(args.seed).shuffle(names)
     n_val = max(1, len(names) // 10) if len(names) > 1 else 0
     val_names, train_names = names[:n_val], names[n_val:]
     if not train_names:
         sys.exit("bc_train: need at least one training episode")
-    train = Chunks(args.data, [episodes[n] for n in train_names], args.sequence, args.chunk)
-    val = Chunks(args.data, [episodes[n] for n in val_names or train_names], args.sequence,
+    train = Chunks([episodes[n] for n in train_names], frames, args.sequence, args.chunk)
+    val = Chunks([episodes[n] for n in val_names or train_names], frames, args.sequence,
                  args.chunk)
-    print("bc_train: %d episodes (%d frames) for training, %d (%d frames) for validation"
-          % (len(train_names), len(train.frames), len(val_names), len(val.frames)), flush=True)
-    batch = max(1, args.batch // (args.chunk - args.sequence + 1))  # windows ~ args.batch frames
+    print("bc_train: %d episodes (%d targets) for training, %d (%d targets) for validation"
+          % (len(train_names), train.targets(), len(val_names), val.targets()), flush=True)
+    batch = max(1, args.batch // (args.chunk - args.sequence + 1))  # windows ~ args.batch targets
     loader = torch.utils.data.DataLoader(train, batch_size=batch, shuffle=True)
     val_loader = torch.utils.data.DataLoader(val, batch_size=8)
 
-    model = UNetLstm(args.width)
+    model = UNetLstm(args.width, sequence=args.sequence)
     optimiser = torch.optim.Adam(model.parameters(), lr=args.lr)
     best, steps, log = math.inf, 0, []
 
@@ -256,7 +306,7 @@ def main():
         total, n, truth, pred = 0.0, 0, [], []
         with torch.no_grad():
             for x, y, m in val_loader:
-                p = model.forward_all(x)
+                p = model.forward_chunks(x)
                 total += loss_fn(p, y, m).item() * m.sum().item()
                 n += m.sum().item()
                 keep = m.numpy() > 0.5
@@ -270,7 +320,7 @@ def main():
         total, n = 0.0, 0
         for x, y, m in loader:
             optimiser.zero_grad()
-            loss = loss_fn(model.forward_all(x), y, m)
+            loss = loss_fn(model.forward_chunks(x), y, m)
             loss.backward()
             optimiser.step()
             total += loss.item() * m.sum().item()

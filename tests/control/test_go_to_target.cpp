@@ -65,6 +65,31 @@ TEST(GoToTarget, AimsAtATangentOfABlockingObstacleAndKeepsItsSide) {
   EXPECT_NEAR((past.aim - Eigen::Vector2d(2.0, 0.0)).norm(), 0.0, 1e-12);
 }
 
+TEST(GoToTarget, MaxAimOffTargetKeepsTheTargetWithinThatAngleOfTheAim) {
+  const walkgen::CircleObstacle<double> chair{1.0, 0.05, 0.15, 0.12};
+  walkgen::GoToTargetSettings s;
+  s.max_aim_off_target = 0.35;  // 20 degrees
+  GoToTarget free({2.0, 0.0}, kMax, {chair});
+  GoToTarget limited({2.0, 0.0}, kMax, {chair}, s);
+  const PlanarPose p{0.6, 0.0, 0.0};  // near the chair: the tangent is ~70 degrees off
+  const auto wide = free(p);
+  const auto kept = limited(p);
+  const Eigen::Vector2d to_target(2.0 - 0.6, 0.0);
+  auto off = [&](const Eigen::Vector2d& aim) {
+    const Eigen::Vector2d a = aim - Eigen::Vector2d(0.6, 0.0);
+    return std::acos(a.normalized().dot(to_target.normalized()));
+  };
+  EXPECT_GT(off(wide.aim), 0.35 + 0.3);
+  EXPECT_NEAR(off(kept.aim), 0.35, 1e-9);
+  EXPECT_LT(kept.aim.y(), 0.0);                  // the same side as without the limit
+  EXPECT_NEAR(kept.command.z(), -0.95 * kMax.z(), 1e-12);  // turning right toward the aim
+  // Past the chair: the aim is the target itself.
+  EXPECT_NEAR((limited(PlanarPose{1.5, 0.1, 0.0}).aim - Eigen::Vector2d(2.0, 0.0)).norm(), 0.0,
+              1e-12);
+  s.max_aim_off_target = 0.0;
+  EXPECT_THROW(GoToTarget({1.0, 0.0}, kMax, {}, s), walkgen::invalid_argument);
+}
+
 TEST(GoToTarget, CommandsStayWithinTheLimits) {
   GoToTarget steer({0.5, 3.0}, kMax, {{0.2, 1.0, 0.2, 0.1}});
   for (double yaw = -3.0; yaw <= 3.0; yaw += 0.25) {

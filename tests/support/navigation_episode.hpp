@@ -52,42 +52,78 @@ struct NavigationResult {
   long qp_failures = 0;
 };
 
-/// The scripted expert: walkgen::GoToTarget around the chairs, waiting while the person is in
-/// the way (within 1.2 m and 60° of the heading), sideways velocity never used (as the thesis's
-/// users did, §11.1.1).
+/// The planar pose of a camera (position, heading of its optical axis x) in the world.
+inline walkgen::PlanarPose camera_planar_pose(const walkgen::CameraImage& camera) {
+  const Eigen::Matrix3d& r = camera.pose_W_C.linear();
+  return {camera.pose_W_C.translation().x(), camera.pose_W_C.translation().y(),
+          std::atan2(r(1, 0), r(0, 0))};
+}
+
+/// Half the horizontal field of view of a camera [rad].
+inline double half_horizontal_fov(const walkgen::CameraImage& camera) {
+  return std::atan(std::tan(camera.fovy / 2.0) * double(camera.width) / double(camera.height));
+}
+
+/// The scripted expert that records the demonstrations. It knows the scene, but acts only on
+/// what the left chest camera shows, so that a network which sees that image can imitate it
+/// (a first expert that steered from the middle of the feet, with a gain saturating ω at 4°
+/// of heading error, gave commands the images could not explain, and cloning it did not learn):
+/// - the target out of view: turn right on the spot until it is in view (the search turn of
+///   figure 11.9);
+/// - in view: walkgen::GoToTarget from the camera's planar pose around the chairs, with a gentle
+///   heading gain (ω saturates at 12° of bearing), aiming at most 20° off the target so that
+///   it stays in view while passing a chair, sideways velocity never used (as the thesis's
+///   users did, §11.1.1); stop with the camera 0.15 m from the target's centre;
+/// - the person within 1.2 m and 60° of the camera's axis: wait until it has passed.
+/// Without images (o.images null) it steers from o.pose and never searches.
 class ScriptedExpert {
  public:
   ScriptedExpert(const walkgen::NavigationScene& scene, const Eigen::Vector3d& max_command,
-                 double stop_distance = 0.22)
-      : scene_(scene), steer_(scene.target, max_command, scene.obstacles_at(0.0, 0.12), [&] {
+                 double stop_distance = 0.15)
+      : scene_(scene),
+        limit_(0.95 * max_command),
+        steer_(scene.target, max_command, scene.obstacles_at(0.0, 0.12), [&] {
           walkgen::GoToTargetSettings s;
           s.stop_distance = stop_distance;
+          s.heading_gain = 0.35;
+          s.max_aim_off_target = 20.0 * EIGEN_PI / 180.0;  // the target stays in view
           return s;
         }()) {}
 
   Eigen::Vector3d operator()(const NavigationObservation& o) {
-    if (scene_.has_person) {
-      const Eigen::Vector2d to =
-          scene_.person.position(o.time) - Eigen::Vector2d(o.pose.x, o.pose.y);
-      const double bearing = std::atan2(to.y(), to.x()) - o.pose.yaw;
-      if (to.norm() < 1.2 && std::cos(bearing) > std::cos(60.0 * EIGEN_PI / 180.0)) {
-        return Eigen::Vector3d::Zero();  // let the person pass
-      }
+    const walkgen::PlanarPose pose =
+        o.images != nullptr ? camera_planar_pose(o.images->left) : o.pose;
+    if (scene_.has_person &&
+        in_sight(scene_.person.position(o.time), pose, 1.2, 60.0 * EIGEN_PI / 180.0)) {
+      return Eigen::Vector3d::Zero();  // let the person pass
     }
-    Eigen::Vector3d c = steer_(o.pose).command;
+    if (o.images != nullptr &&
+        !in_sight(scene_.target, pose, 1e9, half_horizontal_fov(o.images->left) - 0.05)) {
+      return {0.0, 0.0, -limit_.z()};
+    }
+    Eigen::Vector3d c = steer_(pose).command;
     c.y() = 0.0;
     return c;
   }
 
  private:
+  /// Whether `point` is within `range` of `pose` and `half_angle` of its heading.
+  static bool in_sight(const Eigen::Vector2d& point, const walkgen::PlanarPose& pose,
+                       double range, double half_angle) {
+    const Eigen::Vector2d to = point - Eigen::Vector2d(pose.x, pose.y);
+    const double bearing = std::remainder(std::atan2(to.y(), to.x()) - pose.yaw, 2.0 * EIGEN_PI);
+    return to.norm() < range && std::abs(bearing) < half_angle;
+  }
+
   const walkgen::NavigationScene& scene_;
+  Eigen::Vector3d limit_;
   walkgen::GoToTarget steer_;
 };
 
 /// Time to walk and turn to the scene's target at Heicub's speeds, with a margin.
 inline double navigation_time_limit(const walkgen::NavigationScene& s) {
   const double turn = std::abs(std::atan2(s.target.y(), s.target.x()));
-  return 30.0 + 1.6 * (s.target.norm() / 0.032 + turn / 0.071) + (s.has_person ? 30.0 : 0.0);
+  return 30.0 + 1.6 * (s.target.norm() / 0.032 + turn / 0.071) + (s.has_person ? 60.0 : 0.0);
 }
 
 /// Geom ids of everything the robot must not touch (walls, chairs, crates, person).

@@ -14,6 +14,29 @@ python=/usr/bin/python3
 
 "$record" --out "$out/data" --episodes 2 --tasks straight --seed 77
 "$python" "$train" "$out/data" "$out/model" --epochs 3 --width 4 --threads 2
+# The reference for test_velocity_network: the Python model's commands on the first 12 frames of
+# the first episode, with bc_train.py's own pre-processing and 5-frame windows.
+"$python" - "$train" "$out" <<'PY'
+import importlib.util, os, sys
+import numpy as np, torch
+spec = importlib.util.spec_from_file_location("bc_train", sys.argv[1])
+bc = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(bc)
+out = sys.argv[2]
+episodes = bc.read_index(os.path.join(out, "data"))
+rows = episodes[sorted(episodes)[0]][:12]
+model = torch.jit.load(os.path.join(out, "model", "model.pt"))
+t = model.sequence
+frames = torch.from_numpy(np.stack([bc.load_frame(r[1], r[2], r[3]) for r in rows]))
+with torch.no_grad():
+    features = model.encode(frames)
+    padded = torch.cat([features[:1].expand(t - 1, -1), features])
+    with open(os.path.join(out, "reference.csv"), "w") as f:
+        f.write("rgb,disparity,v_x,omega_z\n")
+        for i, r in enumerate(rows):
+            y = model.head(padded[i:i + t].unsqueeze(0))[0]
+            f.write("%s,%s,%.8f,%.8f\n" % (r[2], r[3], float(y[0]), float(y[1])))
+PY
 "$evaluate" --model "$out/model/model.pt" --tasks straight --layouts 1 --time-limit 16 --out "$out" \
   --dagger "$out/data"
 

@@ -33,6 +33,10 @@ struct GoToTargetSettings {
   double turn_in_place_angle = 0.5;  ///< above this heading error: no forward speed
   double clearance = 0.1;            ///< added to an obstacle's radius + margin when aiming
   double command_fraction = 0.95;    ///< of max_command actually used (stay inside the limits)
+  /// The aim direction stays within this angle of the direction to the target, so that a
+  /// camera looking ahead keeps the target in view while passing an obstacle (the way around
+  /// becomes a curve; the NMPC's obstacle rows still keep the feet out). π: no limit.
+  double max_aim_off_target = 3.14159265358979323846;
 };
 
 /// The planar pose of the robot: position [m] and heading [rad] in the world frame.
@@ -81,6 +85,9 @@ class GoToTarget {
                    s_.min_speed_fraction);
     check_argument(s_.clearance >= 0.0, "GoToTargetSettings.clearance", "a length >= 0",
                    s_.clearance);
+    check_argument(s_.max_aim_off_target > 0.0 && s_.max_aim_off_target <= 3.14159265358979323846,
+                   "GoToTargetSettings.max_aim_off_target", "an angle in (0, π]",
+                   s_.max_aim_off_target);
     check_argument(s_.command_fraction > 0.0 && s_.command_fraction <= 1.0,
                    "GoToTargetSettings.command_fraction", "a fraction in (0, 1]",
                    s_.command_fraction);
@@ -140,7 +147,13 @@ class GoToTarget {
       const double tangent = std::sqrt(to_centre * to_centre - r * r);
       out.aim = p + Eigen::Vector2d(std::cos(a), std::sin(a)) * (tangent + s_.clearance);
     }
-    const Eigen::Vector2d to_aim = out.aim - p;
+    Eigen::Vector2d to_aim = out.aim - p;
+    const double off = std::atan2(d.x() * to_aim.y() - d.y() * to_aim.x(), d.dot(to_aim));
+    if (std::abs(off) > s_.max_aim_off_target) {
+      const double a = std::atan2(d.y(), d.x()) + std::copysign(s_.max_aim_off_target, off);
+      to_aim = Eigen::Vector2d(std::cos(a), std::sin(a)) * to_aim.norm();
+      out.aim = p + to_aim;
+    }
     const double heading_error =
         std::atan2(forward.x() * to_aim.y() - forward.y() * to_aim.x(), forward.dot(to_aim));
     const Eigen::Vector3d limit = s_.command_fraction * max_command_;

@@ -25,7 +25,7 @@ namespace walkgen {
 /// The tasks of §9.2 and §11.1.2 (figures 9.4–9.7, 11.13).
 enum class NavigationTask : std::uint8_t {
   straight,    ///< the target ahead, 1.5–2.5 m
-  curved,      ///< the target 35–65° to the left or right, 1.2–2 m
+  curved,      ///< the target 14–24° to the left or right (in the cameras' ±29° view), 1.4–2.2 m
   obstacle,    ///< the target ahead and a chair on the straight way to it
   scan,        ///< the target behind the robot (150–210°): turn, then walk
   dynamic,     ///< the target ahead and a person crossing the way back and forth
@@ -213,7 +213,7 @@ inline NavigationScene make_navigation_scene(NavigationTask task, std::uint32_t 
       s.target = polar(uniform(1.5, 2.5), uniform(-8.0, 8.0));
       break;
     case NavigationTask::curved:
-      s.target = polar(uniform(1.2, 2.0), side * uniform(35.0, 65.0));
+      s.target = polar(uniform(1.4, 2.2), side * uniform(14.0, 24.0));
       break;
     case NavigationTask::obstacle:
       s.target = polar(uniform(1.8, 2.5), uniform(-5.0, 5.0));

@@ -3,13 +3,15 @@
 /// The behavioural-cloning network in the control loop (thesis §7.1.2, figure 8.2): a U-Net-LSTM
 /// trained in Python (python/bc_train.py) and exported as TorchScript turns each new frame of the
 /// chest cameras (left RGB + WLS disparity) into a velocity command (v_x, ω_z) for the NMPC,
-/// keeping the LSTM's state from frame to frame. libtorch adapter (walkgen::torch).
+/// keeping the features of the last frames between calls. libtorch adapter (walkgen::torch).
 ///
 /// Pre-processing, identical to python/bc_train.py: RGB (240 × 320) and disparity are averaged
 /// over 4 × 4 blocks to 60 × 80, RGB scaled to [0, 1], disparity [px] divided by 32, stacked to
-/// four channels. The module must have a method `step(frame (1, 4, 60, 80), h, c)` returning
-/// (output (1, 2) in [−1, 1], h, c) and an int attribute `hidden` (the LSTM size); the output
-/// times max_command is the command.
+/// four channels. The module must have the methods `encode(frames (N, 4, 60, 80))` → features
+/// (N, hidden) and `head(features (1, T, hidden), oldest first)` → output (1, 2) in [−1, 1], and
+/// the int attributes `hidden` and `sequence` (T). Each frame is encoded once; the LSTM runs over
+/// the latest `sequence` features from a zero state, as in training (the first frame of an
+/// episode stands in for the frames before it). The output times max_command is the command.
 
 #include <torch/script.h>
 #include <torch/torch.h>
@@ -49,19 +51,23 @@ class VelocityNetwork {
       check_argument(false, "VelocityNetwork: model", "a TorchScript file (python/bc_train.py)",
                      "'" + path + "' (" + first_line(e.what()) + ")");
     }
-    check_argument(module_.find_method("step").has_value() && module_.hasattr("hidden"),
-                   "VelocityNetwork: model", "a module with step(frame, h, c) and `hidden`",
+    check_argument(module_.find_method("encode").has_value() &&
+                       module_.find_method("head").has_value() && module_.hasattr("hidden") &&
+                       module_.hasattr("sequence"),
+                   "VelocityNetwork: model",
+                   "a module with encode(frames), head(features), `hidden` and `sequence` "
+                   "(python/bc_train.py)",
                    "'" + path + "'");
     hidden_ = module_.attr("hidden").toInt();
+    sequence_ = module_.attr("sequence").toInt();
+    check_argument(hidden_ >= 1 && sequence_ >= 1, "VelocityNetwork: model",
+                   "hidden >= 1 and sequence >= 1", "'" + path + "'");
     module_.eval();
     reset();
   }
 
   /// Forgets the past frames (a new episode).
-  void reset() {
-    h_ = torch::zeros({1, 1, hidden_});
-    c_ = torch::zeros({1, 1, hidden_});
-  }
+  void reset() { window_ = torch::Tensor(); }
 
   /// The command (v_x, 0, ω_z) after one more frame: `left` the left camera's RGB image,
   /// `disparity` its WLS disparity [px] (width × height floats, row-major, ≤ 0 unknown).
@@ -98,10 +104,11 @@ class VelocityNetwork {
       }
     }
     torch::NoGradGuard no_grad;
-    const auto out = module_.get_method("step")({frame_, h_, c_}).toTuple();
-    const torch::Tensor y = out->elements()[0].toTensor();
-    h_ = out->elements()[1].toTensor();
-    c_ = out->elements()[2].toTensor();
+    const torch::Tensor feature = module_.get_method("encode")({frame_}).toTensor().unsqueeze(1);
+    window_ = window_.defined()
+                  ? torch::cat({window_.narrow(1, 1, sequence_ - 1), feature}, 1)
+                  : feature.expand({1, sequence_, hidden_}).contiguous();
+    const torch::Tensor y = module_.get_method("head")({window_}).toTensor();
     const float vx = y[0][0].item<float>(), wz = y[0][1].item<float>();
     check_argument(std::isfinite(vx) && std::isfinite(wz), "VelocityNetwork::step: output",
                    "finite values", "NaN or inf");
@@ -109,14 +116,15 @@ class VelocityNetwork {
   }
 
   std::int64_t hidden() const { return hidden_; }
+  std::int64_t sequence() const { return sequence_; }
 
  private:
   static std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
   VelocityNetworkSettings settings_;
   torch::jit::Module module_;
-  std::int64_t hidden_ = 0;
-  torch::Tensor h_, c_, frame_;
+  std::int64_t hidden_ = 0, sequence_ = 1;
+  torch::Tensor window_, frame_;  ///< the latest `sequence` features (1, T, hidden); the input
 };
 
 }  // namespace walkgen
