@@ -2,13 +2,23 @@
 // keys change the velocity command (v_x, v_y, ω_z) within the NMPC's limits, the closed loop of
 // figure 6.1 walks the humanoid in MuJoCo at real time (or faster), the screen shows command and
 // state, and every NMPC tick is recorded with its command and timestamps (for behavioural
-// cloning).
+// cloning). In a navigation room (thesis §11.1) it records teleoperated demonstrations like
+// examples/record_demonstrations records the scripted expert (§7.1.2, figure 7.2).
 //
 //   teleop [--speed S] [--record FILE] [--max-time T] [--summary FILE]
+//          [--room TASK [--seed S] [--demonstrations DIR]]
 //     --speed S     simulated seconds per wall-clock second (default 1: real time)
 //     --record FILE CSV: wall_time, sim_time, v_x, v_y, omega, key (default teleop_commands.csv)
 //     --max-time T  stop after T simulated seconds (default: until q)
 //     --summary FILE  a few key=value lines at the end (distance walked, status, rows)
+//     --room TASK   walk in the room walkgen::make_navigation_scene(TASK, S) (straight, curved,
+//                   obstacle, scan, dynamic, distractor): walls, target, chairs and the person
+//                   (moved each tick) in MuJoCo, chairs and person as NMPC obstacles; stops when
+//                   the true CoM is within 0.3 m of the target
+//     --seed S      the room's layout (default 1000)
+//     --demonstrations DIR  every NMPC tick, the left RGB image, the WLS disparity of the chest
+//                   stereo pair and the executed command into DIR (walkgen::DemonstrationRecorder,
+//                   episode "<task>_<seed>_teleop"); needs --room and a build with walkgen::opencv
 //
 // Keys: Up/w faster, Down/s slower (v_x ± 0.005 m/s), Left/a turn left, Right/d turn right
 // (ω ± 0.015 rad/s), z/c sideways left/right (v_y ± 0.0015 m/s), space stop, q quit.
@@ -21,13 +31,29 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "support/simulated_tasks.hpp"
+#include "walkgen/mujoco/navigation_scene.hpp"
+#ifdef WALKGEN_TELEOP_DEMONSTRATIONS  // examples/CMakeLists.txt: teleop links walkgen::opencv
+#include "support/navigation_episode.hpp"
+#endif
 
 namespace {
+
+const char* const kUsage =
+    "usage: teleop [--speed S] [--record FILE] [--max-time T] [--summary FILE]\n"
+    "              [--room straight|curved|obstacle|scan|dynamic|distractor [--seed S]\n"
+    "               [--demonstrations DIR]]\n";
+
+/// Reached: the true CoM this close to the room's target [m] (as run_navigation_episode).
+constexpr double kRoomReachDistance = 0.3;
+/// Margin of the chairs and the person as NMPC obstacles [m] (as run_navigation_episode).
+constexpr double kRoomObstacleMargin = 0.12;
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
@@ -140,7 +166,8 @@ void parse_keys(const std::string& in, OnKey on_key) {
 
 int main(int argc, char** argv) {
   double speed = 1.0, max_time = 1e18;
-  std::string record = "teleop_commands.csv", summary_path;
+  std::string record = "teleop_commands.csv", summary_path, room, demonstrations;
+  std::uint32_t seed = 1000;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--speed" && i + 1 < argc) {
@@ -151,11 +178,22 @@ int main(int argc, char** argv) {
       max_time = std::atof(argv[++i]);
     } else if (a == "--summary" && i + 1 < argc) {
       summary_path = argv[++i];
+    } else if (a == "--room" && i + 1 < argc) {
+      room = argv[++i];
+    } else if (a == "--seed" && i + 1 < argc) {
+      char* end = nullptr;
+      const std::string value = argv[++i];
+      const unsigned long s = std::strtoul(value.c_str(), &end, 10);
+      if (value.empty() || *end != '\0' || value[0] == '-' || s > 0xffffffffUL) {
+        std::fprintf(stderr, "teleop: --seed expects an integer in 0..4294967295, got '%s'\n",
+                     value.c_str());
+        return 2;
+      }
+      seed = std::uint32_t(s);
+    } else if (a == "--demonstrations" && i + 1 < argc) {
+      demonstrations = argv[++i];
     } else {
-      std::fprintf(stderr,
-                   "teleop: unknown argument '%s'\nusage: teleop [--speed S] [--record FILE] "
-                   "[--max-time T] [--summary FILE]\n",
-                   a.c_str());
+      std::fprintf(stderr, "teleop: unknown argument '%s'\n%s", a.c_str(), kUsage);
       return 2;
     }
   }
@@ -163,13 +201,58 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "teleop: --speed expects (0, 1000], --max-time a time > 0\n");
     return 2;
   }
+  // The room (--room), and the demonstrations recorded in it (--demonstrations).
+  std::optional<walkgen::NavigationScene> scene;
+  if (!room.empty()) {
+    try {
+      scene = walkgen::make_navigation_scene(walkgen::navigation_task_from_string(room), seed);
+    } catch (const walkgen::invalid_argument& e) {
+      std::fprintf(stderr, "teleop: --room: %s\n%s", e.what(), kUsage);
+      return 2;
+    }
+  }
+  if (!demonstrations.empty() && !scene) {
+    std::fprintf(stderr, "teleop: --demonstrations DIR needs --room TASK\n%s", kUsage);
+    return 2;
+  }
+#ifdef WALKGEN_TELEOP_DEMONSTRATIONS
+  std::optional<walkgen::DemonstrationRecorder> recorder;
+  std::optional<walkgen::StereoDepth> stereo;
+  if (!demonstrations.empty()) {
+    const std::string episode = room + "_" + std::to_string(seed) + "_teleop";
+    if (std::filesystem::exists(demonstrations + "/rgb/" + episode + "_000000.png")) {
+      std::fprintf(stderr,
+                   "teleop: '%s' already holds the episode %s (its images would be overwritten); "
+                   "choose another --seed or DIR\n",
+                   demonstrations.c_str(), episode.c_str());
+      return 2;
+    }
+    try {
+      recorder.emplace(demonstrations, episode);
+    } catch (const walkgen::invalid_argument& e) {
+      std::fprintf(stderr, "teleop: --demonstrations: %s\n", e.what());
+      return 2;
+    }
+  }
+#else
+  if (!demonstrations.empty()) {
+    std::fprintf(stderr,
+                 "teleop: --demonstrations needs walkgen::opencv, which this build lacks\n");
+    return 2;
+  }
+#endif
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
   const walkgen::KinematicTree<double> tree = walkgen_test::humanoid_tree();
-  walkgen::MujocoRobot robot;
+  walkgen::MujocoRobotSettings robot_settings;
+  walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  if (scene) {
+    robot_settings.objects = scene->objects();
+    settings.obstacles = scene->obstacles_at(0.0, kRoomObstacleMargin);  // chairs and person
+  }
+  walkgen::MujocoRobot robot(robot_settings);
   walkgen_test::HumanoidIk ik(tree);
-  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   walkgen_test::SimLoop loop(settings, robot, ik);
   std::ofstream csv(record);
   if (!csv) {
@@ -183,6 +266,16 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "teleop: %s\n", loop.last_tick().message.c_str());
     return 1;
   }
+#ifdef WALKGEN_TELEOP_DEMONSTRATIONS
+  if (recorder) {
+    const walkgen::StereoImages& first = robot.render_cameras();
+    if (first.status != walkgen::RenderStatus::ok) {
+      std::fprintf(stderr, "teleop: cannot render the chest cameras: %s\n", first.message.c_str());
+      return 1;
+    }
+    stereo.emplace(walkgen_test::make_stereo_depth(first));
+  }
+#endif
   const Eigen::Vector3d limit = 0.95 * settings.max_command;
   const Eigen::Vector3d step(0.005, 0.0015, 0.015);
   Eigen::Vector3d command = Eigen::Vector3d::Zero();
@@ -197,7 +290,10 @@ int main(int argc, char** argv) {
   double zmp_sum = 0.0;
   long zmp_n = 0;
   walkgen::LoopStatus status = walkgen::LoopStatus::ok;
-  std::string key_this_tick;
+  std::string key_this_tick, stop_message;
+  long frames = 0;
+  bool reached = false;
+  double target_distance = scene ? (walkgen_test::true_com(robot) - scene->target).norm() : 0.0;
   while (!quit && g_stop == 0 && robot.output().time - t0 < max_time) {
     // Keys until the wall clock has caught up with the simulation.
     const double sim = robot.output().time - t0;
@@ -240,6 +336,32 @@ int main(int argc, char** argv) {
       });
     } while (!quit && g_stop == 0 && wall() < sim / speed);
     if (quit) break;
+    const double t = robot.output().time - t0;
+    if (scene && scene->has_person) {  // the person walks on; the NMPC avoids where it is now
+      const Eigen::Vector2d p = scene->person.position(t);
+      robot.set_object_position("person", {p.x(), p.y(), 0.0});
+      loop.mpc().set_obstacles(scene->obstacles_at(t, kRoomObstacleMargin));
+    }
+#ifdef WALKGEN_TELEOP_DEMONSTRATIONS
+    if (recorder) {  // what the robot sees now, and the command it executes from now
+      const walkgen::StereoImages& images = robot.render_cameras();
+      if (images.status != walkgen::RenderStatus::ok) {
+        stop_message = "cannot render the chest cameras: " + images.message;
+        break;
+      }
+      const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
+                         const_cast<std::uint8_t*>(images.left.rgb.data()));
+      const cv::Mat right(images.right.height, images.right.width, CV_8UC3,
+                          const_cast<std::uint8_t*>(images.right.rgb.data()));
+      try {
+        recorder->record(t, images.left, stereo->compute(left, right).disparity, command);
+      } catch (const walkgen::invalid_argument& e) {
+        stop_message = std::string("recording failed: ") + e.what();
+        break;
+      }
+      frames = recorder->samples();
+    }
+#endif
     loop.set_command(command);
     const walkgen::LoopTick& tick = loop.tick();
     status = tick.status;
@@ -254,6 +376,10 @@ int main(int argc, char** argv) {
     key_this_tick.clear();
     const auto& st = loop.mpc().state();
     const walkgen::PlanarPose pose = walkgen_test::walking_pose(st);
+    if (scene) {
+      target_distance = (walkgen_test::true_com(robot) - scene->target).norm();
+      reached = target_distance <= kRoomReachDistance;
+    }
     // The screen: home, clear, then the panel.
     std::printf(
         "\x1b[H\x1b[2J"
@@ -269,8 +395,26 @@ int main(int argc, char** argv) {
         limit.y(), limit.z(), robot.output().time - t0, wall(), pose.x, pose.y, pose.yaw,
         robot.output().base_height, zmp_n > 0 ? 100.0 * zmp_sum / double(zmp_n) : 0.0,
         walkgen::to_string(status), walkgen::to_string(tick.mpc), rows, record.c_str());
+    if (scene) {
+      std::printf("room      %s, seed %u: target %.2f m from the CoM (reached within %.1f m)\r\n",
+                  walkgen::to_string(scene->task), seed, target_distance, kRoomReachDistance);
+    }
+    if (!demonstrations.empty()) {
+      std::printf("demos     %ld frames to %s/index.txt\r\n", frames, demonstrations.c_str());
+    }
     std::fflush(stdout);
     if (status == walkgen::LoopStatus::fallen || status == walkgen::LoopStatus::diverged) break;
+    if (reached) break;
+  }
+  if (reached) {
+    std::printf("\r\nteleop: reached the target: the true CoM is %.2f m from it\r\n",
+                target_distance);
+  } else if (!stop_message.empty()) {
+    std::fprintf(stderr, "\r\nteleop: %s\r\n", stop_message.c_str());
+  }
+  if (!demonstrations.empty()) {
+    std::printf("teleop: %ld demonstration frames in %s/index.txt\r\n", frames,
+                demonstrations.c_str());
   }
   csv.flush();
   const auto& st = loop.mpc().state();
@@ -283,7 +427,12 @@ int main(int argc, char** argv) {
     summary << "status=" << walkgen::to_string(status) << "\nsim_time=" << robot.output().time - t0
             << "\nx=" << pose.x << "\ny=" << pose.y << "\nheading=" << pose.yaw << "\nrows=" << rows
             << "\n";
+    if (scene) {
+      summary << "room=" << walkgen::to_string(scene->task) << "\nseed=" << seed
+              << "\ntarget_distance=" << target_distance << "\nreached=" << (reached ? 1 : 0)
+              << "\nframes=" << frames << "\n";
+    }
   }
   const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed;
-  return ok && csv.good() ? 0 : 1;
+  return ok && csv.good() && stop_message.empty() ? 0 : 1;
 }

@@ -1,13 +1,21 @@
 #!/usr/bin/env bash
 # Drives examples/teleop through a real terminal (tmux) with keys, as a user would:
-#   teleop_tmux.sh <teleop binary> <output folder>
+#   teleop_tmux.sh <teleop binary> <output folder> [demonstrations]
 # Walks forward (Up x4 = 0.020 m/s), turns left (Left x2 = 0.030 rad/s), stops (space) and quits
 # (q); then checks the screen, the recorded commands and the summary.
+# With "demonstrations": in the room "straight" (seed 5), records demonstrations into
+# <output folder>/demonstrations while walking forward (Up x4) for at least 10 NMPC ticks, quits,
+# and checks index.txt: at least 10 frames, their rgb/ and disparity/ images exist, v_x > 0.
 set -euo pipefail
 bin=$1
 out=$2
+mode=${3:-keys}
+[ "$mode" = keys ] || [ "$mode" = demonstrations ] || { echo "teleop_tmux: unknown mode '$mode'"; exit 2; }
+demos="$out/demonstrations"
 mkdir -p "$out"
-rm -f "$out/teleop.csv" "$out/teleop_summary.txt"
+rm -rf "$out/teleop.csv" "$out/teleop_summary.txt" "$demos"  # the recorder would append
+room_args=()
+[ "$mode" = demonstrations ] && room_args=(--room straight --seed 5 --demonstrations "'$demos'")
 command -v tmux >/dev/null || { echo "teleop_tmux: tmux is not installed (scripts/setup.sh installs it)"; exit 1; }
 socket="walkgen_teleop_$$"
 session=teleop
@@ -16,7 +24,7 @@ trap cleanup EXIT
 fail() { echo "teleop_tmux: FAILED: $*"; echo "--- screen:"; tmux -L "$socket" capture-pane -p -t "$session" 2>/dev/null || true; exit 1; }
 
 tmux -L "$socket" new-session -d -s "$session" -x 120 -y 30 \
-  "'$bin' --speed 10 --record '$out/teleop.csv' --summary '$out/teleop_summary.txt' --max-time 600; sleep 30"
+  "'$bin' --speed 10 ${room_args[*]:-} --record '$out/teleop.csv' --summary '$out/teleop_summary.txt' --max-time 600; sleep 30"
 wait_for() {  # wait_for <pattern> <seconds>: the screen shows the pattern
   for _ in $(seq 1 $(( $2 * 10 ))); do
     if tmux -L "$socket" capture-pane -p -t "$session" | grep -q -- "$1"; then return 0; fi
@@ -24,8 +32,55 @@ wait_for() {  # wait_for <pattern> <seconds>: the screen shows the pattern
   done
   fail "the screen never showed '$1'"
 }
+quit_and_summary() {
+  tmux -L "$socket" send-keys -t "$session" q
+  for _ in $(seq 1 100); do [ -s "$out/teleop_summary.txt" ] && break; sleep 0.1; done
+  [ -s "$out/teleop_summary.txt" ] || fail "teleop wrote no summary after q"
+  cat "$out/teleop_summary.txt"
+}
 wait_for "recorded" 60
 tmux -L "$socket" send-keys -t "$session" Up Up Up Up
+
+if [ "$mode" = demonstrations ]; then
+  frames() { local n; n=$(grep -vc '^#' "$demos/index.txt" 2>/dev/null) || true; echo "${n:-0}"; }
+  wait_for "v_x +0.020" 10
+  start=$(frames)
+  for _ in $(seq 1 600); do  # at least 10 frames after the keys (4 s simulated)
+    [ "$(frames)" -ge $(( start + 10 )) ] && break
+    sleep 0.1
+  done
+  quit_and_summary
+  /usr/bin/env python3 - "$demos" "$out/teleop_summary.txt" <<'PY'
+import os, sys
+folder = sys.argv[1]
+summary = dict(line.strip().split("=", 1) for line in open(sys.argv[2]) if "=" in line)
+def fail(msg):
+    sys.exit("teleop_tmux demonstrations: FAILED: " + msg)
+if summary["status"] != "ok":
+    fail("status " + summary["status"])
+rows = [l.split() for l in open(os.path.join(folder, "index.txt")) if l.strip() and l[0] != "#"]
+if len(rows) < 10:
+    fail("%d frames in index.txt, expected at least 10" % len(rows))
+for r in rows:
+    if len(r) != 7 or not r[0].startswith("rgb/") or not r[1].startswith("disparity/"):
+        fail("malformed line: %s" % " ".join(r))
+    if r[2] != "straight_5_teleop":
+        fail("episode %s, expected straight_5_teleop" % r[2])
+    for f in r[:2]:
+        path = os.path.join(folder, f)
+        if not os.path.isfile(path) or os.path.getsize(path) == 0:
+            fail("missing or empty %s" % f)
+vx = [float(r[4]) for r in rows]
+if not max(vx) > 0.0:
+    fail("no recorded command with v_x > 0")
+if int(summary["frames"]) != len(rows):
+    fail("the summary says %s frames, index.txt has %d" % (summary["frames"], len(rows)))
+print("teleop_tmux demonstrations: %d frames recorded, max v_x %.3f m/s, target %.2f m away"
+      % (len(rows), max(vx), float(summary["target_distance"])))
+PY
+  exit 0
+fi
+
 wait_for "v_x +0.020" 10
 sleep 2   # 20 s simulated: about 0.4 m forward
 tmux -L "$socket" send-keys -t "$session" Left Left
@@ -34,10 +89,7 @@ sleep 2
 tmux -L "$socket" send-keys -t "$session" Space
 wait_for "v_x +0.000" 10
 sleep 1
-tmux -L "$socket" send-keys -t "$session" q
-for _ in $(seq 1 100); do [ -s "$out/teleop_summary.txt" ] && break; sleep 0.1; done
-[ -s "$out/teleop_summary.txt" ] || fail "teleop wrote no summary after q"
-cat "$out/teleop_summary.txt"
+quit_and_summary
 
 /usr/bin/env python3 - "$out/teleop.csv" "$out/teleop_summary.txt" <<'PY'
 import csv, sys

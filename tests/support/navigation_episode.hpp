@@ -65,15 +65,17 @@ inline double half_horizontal_fov(const walkgen::CameraImage& camera) {
 }
 
 /// The scripted expert that records the demonstrations. It knows the scene, but acts only on
-/// what the left chest camera shows, so that a network which sees that image can imitate it
-/// (a first expert that steered from the middle of the feet, with a gain saturating ω at 4°
-/// of heading error, gave commands the images could not explain, and cloning it did not learn):
-/// - the target out of view: turn right on the spot until it is in view (the search turn of
-///   figure 11.9);
-/// - in view: walkgen::GoToTarget from the camera's planar pose around the chairs, with a gentle
-///   heading gain (ω saturates at 12° of bearing), aiming at most 20° off the target so that
-///   it stays in view while passing a chair, sideways velocity never used (as the thesis's
-///   users did, §11.1.1); stop with the camera 0.15 m from the target's centre;
+/// what the left chest camera shows, from that camera's pose (which sways ±0.12 m sideways with
+/// the gait), so that a network which sees its images can imitate it (a first expert steered
+/// from the middle of the feet, turned toward targets outside the view and saturated ω at 4°
+/// of heading error, and cloning it did not learn):
+/// - the target outside the view (±(half the field of view − 0.05 rad)): turn on the spot,
+///   toward it the shorter way once it has been in view in this episode, else to the right
+///   until it comes into view (the search turn of figure 11.9);
+/// - in view: walkgen::GoToTarget around the chairs, with a gentle heading gain (ω saturates
+///   at 12° of bearing), aiming at most 16° off the target so that it stays in view while
+///   passing a chair, sideways velocity never used (as the thesis's users did, §11.1.1); stop
+///   with the camera 0.15 m from the target's centre;
 /// - the person within 1.2 m and 60° of the camera's axis: wait until it has passed.
 /// Without images (o.images null) it steers from o.pose and never searches.
 class ScriptedExpert {
@@ -86,7 +88,7 @@ class ScriptedExpert {
           walkgen::GoToTargetSettings s;
           s.stop_distance = stop_distance;
           s.heading_gain = 0.35;
-          s.max_aim_off_target = 20.0 * EIGEN_PI / 180.0;  // the target stays in view
+          s.max_aim_off_target = 16.0 * EIGEN_PI / 180.0;  // the target stays in view
           return s;
         }()) {}
 
@@ -97,9 +99,13 @@ class ScriptedExpert {
         in_sight(scene_.person.position(o.time), pose, 1.2, 60.0 * EIGEN_PI / 180.0)) {
       return Eigen::Vector3d::Zero();  // let the person pass
     }
-    if (o.images != nullptr &&
-        !in_sight(scene_.target, pose, 1e9, half_horizontal_fov(o.images->left) - 0.05)) {
-      return {0.0, 0.0, -limit_.z()};
+    if (o.images != nullptr) {
+      const double bearing = bearing_of(scene_.target, pose);
+      if (std::abs(bearing) < half_horizontal_fov(o.images->left) - 0.05) {
+        seen_ = true;
+      } else {
+        return {0.0, 0.0, seen_ ? std::copysign(limit_.z(), bearing) : -limit_.z()};
+      }
     }
     Eigen::Vector3d c = steer_(pose).command;
     c.y() = 0.0;
@@ -107,17 +113,23 @@ class ScriptedExpert {
   }
 
  private:
+  /// The direction of `point` seen from `pose`, from its heading, in (−π, π] (left > 0).
+  static double bearing_of(const Eigen::Vector2d& point, const walkgen::PlanarPose& pose) {
+    return std::remainder(std::atan2(point.y() - pose.y, point.x() - pose.x) - pose.yaw,
+                          2.0 * EIGEN_PI);
+  }
+
   /// Whether `point` is within `range` of `pose` and `half_angle` of its heading.
   static bool in_sight(const Eigen::Vector2d& point, const walkgen::PlanarPose& pose,
                        double range, double half_angle) {
-    const Eigen::Vector2d to = point - Eigen::Vector2d(pose.x, pose.y);
-    const double bearing = std::remainder(std::atan2(to.y(), to.x()) - pose.yaw, 2.0 * EIGEN_PI);
-    return to.norm() < range && std::abs(bearing) < half_angle;
+    return (point - Eigen::Vector2d(pose.x, pose.y)).norm() < range &&
+           std::abs(bearing_of(point, pose)) < half_angle;
   }
 
   const walkgen::NavigationScene& scene_;
   Eigen::Vector3d limit_;
   walkgen::GoToTarget steer_;
+  bool seen_ = false;  ///< the target has been in view
 };
 
 /// Time to walk and turn to the scene's target at Heicub's speeds, with a margin.
@@ -146,6 +158,18 @@ inline bool touches(const mjData* d, const std::vector<int>& geoms) {
   return false;
 }
 
+/// The stereo pipeline of §3.1 with the thesis's parameters (RGB input) on the ideal simulated
+/// pair that `images` (a successful MujocoRobot::render_cameras) came from.
+inline walkgen::StereoDepth make_stereo_depth(const walkgen::StereoImages& images) {
+  const walkgen::PinholeIntrinsics k =
+      walkgen::pinhole_from_fovy(images.left.width, images.left.height, images.left.fovy);
+  const double baseline =
+      (images.left.pose_W_C.translation() - images.right.pose_W_C.translation()).norm();
+  walkgen::StereoDepthSettings settings;
+  settings.rgb_input = true;
+  return walkgen::StereoDepth(settings, walkgen::ideal_disparity_to_depth(k, baseline));
+}
+
 /// Runs `policy` in `scene` until the robot reaches the target, collides, falls, or the time
 /// limit passes.
 inline NavigationResult run_navigation_episode(const walkgen::NavigationScene& scene,
@@ -171,19 +195,12 @@ inline NavigationResult run_navigation_episode(const walkgen::NavigationScene& s
   const double t0 = robot.output().time;
   const double limit = options.time_limit > 0.0 ? options.time_limit : navigation_time_limit(scene);
 
-  // The stereo pipeline of §3.1 with the thesis's parameters on the ideal simulated pair.
   const walkgen::StereoImages& first = robot.render_cameras();
   if (first.status != walkgen::RenderStatus::ok) {
     result.message = first.message;
     return result;
   }
-  const walkgen::PinholeIntrinsics k =
-      walkgen::pinhole_from_fovy(first.left.width, first.left.height, first.left.fovy);
-  const double baseline =
-      (first.left.pose_W_C.translation() - first.right.pose_W_C.translation()).norm();
-  walkgen::StereoDepthSettings depth_settings;
-  depth_settings.rgb_input = true;
-  walkgen::StereoDepth stereo(depth_settings, walkgen::ideal_disparity_to_depth(k, baseline));
+  walkgen::StereoDepth stereo = make_stereo_depth(first);
 
   while (true) {
     const double t = robot.output().time - t0;
