@@ -6,6 +6,7 @@ disparity/) and exports it as TorchScript for the C++ controller.
     /usr/bin/python3 python/bc_train.py DATA [DATA ...] OUT [--epochs 30] [--batch 32]
                                           [--lr 1e-3] [--sequence 5] [--chunk 16] [--width 8]
                                           [--seed 0] [--max-steps N] [--threads 2]
+                                          [--init OUT/best.pth]
 
 Pre-processing (the C++ side, walkgen/torch/velocity_network.hpp, does the same): the left RGB
 image and the WLS disparity (240 x 320) are averaged over 4 x 4 blocks to 60 x 80; RGB is scaled
@@ -22,8 +23,9 @@ encoded once, with one sequence ending at each of its last chunk - sequence + 1 
 (v_x, omega_z) divided by the generator's limits (Heicub's 0.034 m/s and 0.075 rad/s), so the
 network's tanh output times the limits is the command.
 
-Split: 90 % of the episodes for training, 10 % (at least one) for validation, so that the
-validation frames come from rooms the network has not seen (the thesis split frames at random).
+Split: about 90 % of the episodes for training, 10 % (at least one) for validation, chosen by
+a hash of the episode's name, so that the validation frames come from rooms the network has not
+seen (the thesis split frames at random) and the split does not change when data is added.
 The weights with the best validation loss are kept. Writes to OUT: model.pt (TorchScript, with
 `encode(frame)`, `head(features)` and the attributes `sequence` and `hidden`), training_log.csv
 (epoch, train and validation MSE, seconds), training.png (the loss curves, figure 11.3), and
@@ -37,6 +39,7 @@ import os
 import random
 import sys
 import time
+import zlib
 
 import numpy as np
 import torch
@@ -257,9 +260,13 @@ def main():
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--max-steps", type=int, default=0, help="stop after N optimiser steps")
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--init", help="start from these weights (OUT/best.pth of an earlier "
+                        "run, e.g. to fine-tune after a DAgger round); with --epochs 0 only "
+                        "evaluate and export them")
     args = parser.parse_args()
-    if args.epochs < 1 or args.batch < 1 or args.sequence < 1 or not args.lr > 0:
-        sys.exit("bc_train: epochs, batch, sequence >= 1 and lr > 0 expected")
+    if args.epochs < (0 if args.init else 1) or args.batch < 1 or args.sequence < 1 \
+            or not args.lr > 0:
+        sys.exit("bc_train: epochs (0 only with --init), batch, sequence >= 1 and lr > 0 expected")
     if args.chunk < args.sequence:
         sys.exit("bc_train: --chunk must be at least --sequence")
     torch.manual_seed(args.seed)
@@ -277,10 +284,13 @@ def main():
         print("bc_train: loading %d frames of %s" % (len(rows), folder), flush=True)
         for r, f in zip(rows, load_frames(folder, rows)):
             frames[(folder, r[2])] = f
+    # An episode's split follows from its name alone (CRC-32 mod 10 == 0: validation), so it
+    # stays the same when folders are added (DAgger rounds) or a run starts from --init.
     names = sorted(episodes)
-    random.Random(args.seed).shuffle(names)
-    n_val = max(1, len(names) // 10) if len(names) > 1 else 0
-    val_names, train_names = names[:n_val], names[n_val:]
+    val_names = [n for n in names if zlib.crc32(n.split("/", 1)[-1].encode()) % 10 == 0]
+    if not val_names and len(names) > 1:
+        val_names = names[:1]
+    train_names = [n for n in names if n not in val_names]
     if not train_names:
         sys.exit("bc_train: need at least one training episode")
     train = Chunks([episodes[n] for n in train_names], frames, args.sequence, args.chunk)
@@ -293,6 +303,11 @@ def main():
     val_loader = torch.utils.data.DataLoader(val, batch_size=8)
 
     model = UNetLstm(args.width, sequence=args.sequence)
+    if args.init:
+        try:
+            model.load_state_dict(torch.load(args.init))
+        except (OSError, RuntimeError) as e:
+            sys.exit("bc_train: --init %s: %s (same --width and --sequence?)" % (args.init, e))
     optimiser = torch.optim.Adam(model.parameters(), lr=args.lr)
     best, steps, log = math.inf, 0, []
 
@@ -331,19 +346,25 @@ def main():
         val_loss, _, _ = evaluate()
         log.append((epoch, total / n, val_loss, time.time() - start))
         marker = ""
-        if val_loss < best:
+        if val_loss < best:  # export now: a long run stopped early keeps its best model
             best = val_loss
             torch.save(model.state_dict(), os.path.join(args.out, "best.pth"))
+            model.eval()
+            torch.jit.script(model).save(os.path.join(args.out, "model.pt"))
+            model.train()
             marker = " (best)"
         print("epoch %3d: train MSE %.4f, validation MSE %.4f, %.0f s%s"
               % (epoch, total / n, val_loss, time.time() - start, marker), flush=True)
         if args.max_steps and steps >= args.max_steps:
             break
 
+    if not log:  # --epochs 0: the given weights
+        torch.save(model.state_dict(), os.path.join(args.out, "best.pth"))
+        best, _, _ = evaluate()
+        model.eval()
+        torch.jit.script(model).save(os.path.join(args.out, "model.pt"))
     model.load_state_dict(torch.load(os.path.join(args.out, "best.pth")))
     model.eval()
-    scripted = torch.jit.script(model)
-    scripted.save(os.path.join(args.out, "model.pt"))
     with open(os.path.join(args.out, "training_log.csv"), "w") as f:
         f.write("epoch,train_mse,validation_mse,seconds\n")
         for row in log:
@@ -351,7 +372,8 @@ def main():
     _, truth, pred = evaluate()
     truth = truth * np.array(MAX_COMMAND)
     pred = pred * np.array(MAX_COMMAND)
-    bins = (np.linspace(-0.036, 0.036, 19), np.linspace(-0.08, 0.08, 17))
+    # The thesis's bins (§9.2): 0.01 m/s and 0.01 rad/s, centred on zero.
+    bins = (np.arange(-0.045, 0.0451, 0.01), np.arange(-0.085, 0.0851, 0.01))
     rows = histograms(truth, pred, args.out, bins)
     import matplotlib
     matplotlib.use("Agg")
