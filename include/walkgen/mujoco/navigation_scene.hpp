@@ -1,11 +1,11 @@
 #pragma once
 /// @file
 /// Rooms for learning to navigate (thesis §11.1, figures 11.5 and 11.13): a target object (a
-/// red-orange cylinder standing for the fire extinguisher), chairs as obstacles, an object of
-/// similar colour as a distractor, a person walking across, all laid out at random from a seed,
-/// in a walled room with textured surfaces (block matching needs texture, §3.1). The robot
-/// starts at the origin facing +x, the generator's world frame. Part of walkgen::mujoco: it
-/// produces MujocoRobotSettings::objects and knows where everything is, so a scripted expert
+/// red-orange cylinder standing for the fire extinguisher, 1 m tall so that it stays in view),
+/// chairs as obstacles, an object of similar colour as a distractor, a person walking across,
+/// all laid out at random from a seed, in a walled room with textured surfaces (block matching
+/// needs texture, §3.1). The robot starts at the origin facing +x, the generator's world frame.
+/// Part of walkgen::mujoco: it produces MujocoRobotSettings::objects and knows where everything is, so a scripted expert
 /// can steer through it (walkgen::GoToTarget) and an evaluation can tell success from collision.
 
 #include <Eigen/Core>
@@ -100,7 +100,11 @@ struct NavigationScene {
   NavigationTask task = NavigationTask::straight;
   std::uint32_t seed = 0;
   Eigen::Vector2d target = Eigen::Vector2d::Zero();  ///< the target's centre
-  double target_radius = 0.05;
+  double target_radius = 0.06;
+  /// Taller than the chest cameras (0.75 m), so that the target stays in view up to the end of
+  /// the way: a 0.35 m extinguisher on the floor leaves the view at its bottom within 0.85 m,
+  /// and the last turns toward it could not be seen, nor learned.
+  double target_height = 1.0;
   std::vector<CircleObstacle<double>> chairs;  ///< static obstacles (radius around the centre)
   bool has_distractor = false;
   Eigen::Vector2d distractor = Eigen::Vector2d::Zero();
@@ -144,7 +148,7 @@ struct NavigationScene {
     t.name = "target";
     t.shape = SceneShape::cylinder;
     t.position = Eigen::Vector3d(target.x(), target.y(), 0.0);
-    t.size = Eigen::Vector3d(target_radius, target_radius, 0.35);
+    t.size = Eigen::Vector3d(target_radius, target_radius, target_height);
     t.rgb = Eigen::Vector3d(0.9, 0.12, 0.04);
     t.collides = false;
     out.push_back(t);
