@@ -96,8 +96,9 @@ int main(int argc, char** argv) {
     simulated += r.time;
     std::printf(
         "episode %3d %-10s seed %u%s: %s after %5.1f s, %.2f m from the target, %ld frames%s%s\n",
-        e + 1, walkgen::to_string(task), scene.seed, perturbed ? " (perturbed)" : "", r.reached ? "reached" : "FAILED ", r.time,
-        r.final_distance, recorder.samples(), r.message.empty() ? "" : ": ", r.message.c_str());
+        e + 1, walkgen::to_string(task), scene.seed, perturbed ? " (perturbed)" : "",
+        r.reached ? "reached" : "FAILED ", r.time, r.final_distance, recorder.samples(),
+        r.message.empty() ? "" : ": ", r.message.c_str());
     std::fflush(stdout);
   }
   std::printf(

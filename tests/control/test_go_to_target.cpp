@@ -81,7 +81,7 @@ TEST(GoToTarget, MaxAimOffTargetKeepsTheTargetWithinThatAngleOfTheAim) {
   };
   EXPECT_GT(off(wide.aim), 0.35 + 0.3);
   EXPECT_NEAR(off(kept.aim), 0.35, 1e-9);
-  EXPECT_LT(kept.aim.y(), 0.0);                  // the same side as without the limit
+  EXPECT_LT(kept.aim.y(), 0.0);                            // the same side as without the limit
   EXPECT_NEAR(kept.command.z(), -0.95 * kMax.z(), 1e-12);  // turning right toward the aim
   // Past the chair: the aim is the target itself.
   EXPECT_NEAR((limited(PlanarPose{1.5, 0.1, 0.0}).aim - Eigen::Vector2d(2.0, 0.0)).norm(), 0.0,

@@ -120,8 +120,8 @@ class ScriptedExpert {
   }
 
   /// Whether `point` is within `range` of `pose` and `half_angle` of its heading.
-  static bool in_sight(const Eigen::Vector2d& point, const walkgen::PlanarPose& pose,
-                       double range, double half_angle) {
+  static bool in_sight(const Eigen::Vector2d& point, const walkgen::PlanarPose& pose, double range,
+                       double half_angle) {
     return (point - Eigen::Vector2d(pose.x, pose.y)).norm() < range &&
            std::abs(bearing_of(point, pose)) < half_angle;
   }

@@ -5,8 +5,9 @@
 /// chairs as obstacles, an object of similar colour as a distractor, a person walking across,
 /// all laid out at random from a seed, in a walled room with textured surfaces (block matching
 /// needs texture, §3.1). The robot starts at the origin facing +x, the generator's world frame.
-/// Part of walkgen::mujoco: it produces MujocoRobotSettings::objects and knows where everything is, so a scripted expert
-/// can steer through it (walkgen::GoToTarget) and an evaluation can tell success from collision.
+/// Part of walkgen::mujoco: it produces MujocoRobotSettings::objects and knows where everything is,
+/// so a scripted expert can steer through it (walkgen::GoToTarget) and an evaluation can tell
+/// success from collision.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -24,8 +25,8 @@ namespace walkgen {
 
 /// The tasks of §9.2 and §11.1.2 (figures 9.4–9.7, 11.13).
 enum class NavigationTask : std::uint8_t {
-  straight,    ///< the target ahead, 1.5–2.5 m
-  curved,      ///< the target 14–24° to the left or right (in the cameras' ±29° view), 1.4–2.2 m
+  straight,  ///< the target ahead, 1.5–2.5 m
+  curved,  ///< the target 14–24° to the left or right (in the cameras' ±29° view), 1.4–2.2 m
   obstacle,    ///< the target ahead and a chair on the straight way to it
   scan,        ///< the target behind the robot (150–210°): turn, then walk
   dynamic,     ///< the target ahead and a person crossing the way back and forth

@@ -105,9 +105,8 @@ class VelocityNetwork {
     }
     torch::NoGradGuard no_grad;
     const torch::Tensor feature = module_.get_method("encode")({frame_}).toTensor().unsqueeze(1);
-    window_ = window_.defined()
-                  ? torch::cat({window_.narrow(1, 1, sequence_ - 1), feature}, 1)
-                  : feature.expand({1, sequence_, hidden_}).contiguous();
+    window_ = window_.defined() ? torch::cat({window_.narrow(1, 1, sequence_ - 1), feature}, 1)
+                                : feature.expand({1, sequence_, hidden_}).contiguous();
     const torch::Tensor y = module_.get_method("head")({window_}).toTensor();
     const float vx = y[0][0].item<float>(), wz = y[0][1].item<float>();
     check_argument(std::isfinite(vx) && std::isfinite(wz), "VelocityNetwork::step: output",
