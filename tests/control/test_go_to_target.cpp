@@ -90,6 +90,36 @@ TEST(GoToTarget, MaxAimOffTargetKeepsTheTargetWithinThatAngleOfTheAim) {
   EXPECT_THROW(GoToTarget({1.0, 0.0}, kMax, {}, s), walkgen::invalid_argument);
 }
 
+TEST(GoToTarget, PassSideChoosesTheSideWhateverTheHeading) {
+  using walkgen::PassSide;
+  auto settings = [](PassSide side) {
+    walkgen::GoToTargetSettings s;
+    s.pass_side = side;
+    return s;
+  };
+  for (double offset : {-0.05, 0.05}) {  // the chair right or left of the way to the target
+    const walkgen::CircleObstacle<double> chair{1.0, offset, 0.15, 0.12};
+    for (double yaw : {-0.1, 0.1}) {  // heading toward either side
+      const PlanarPose p{0.3, 0.0, yaw};
+      GoToTarget left({2.0, 0.0}, kMax, {chair}, settings(PassSide::left));
+      GoToTarget right({2.0, 0.0}, kMax, {chair}, settings(PassSide::right));
+      GoToTarget shorter({2.0, 0.0}, kMax, {chair}, settings(PassSide::shorter));
+      GoToTarget heading({2.0, 0.0}, kMax, {chair});
+      EXPECT_GT(left(p).aim.y(), offset + 0.15) << "offset " << offset << ", yaw " << yaw;
+      EXPECT_LT(right(p).aim.y(), offset - 0.15) << "offset " << offset << ", yaw " << yaw;
+      // The shorter way: away from the centre, whatever the heading ...
+      EXPECT_LT(shorter(p).aim.y() * offset, 0.0) << "offset " << offset << ", yaw " << yaw;
+      // ... where toward_heading follows the heading.
+      EXPECT_GT(heading(p).aim.y() * yaw, 0.0) << "offset " << offset << ", yaw " << yaw;
+      // The aim is on the tangent: asin(r / |c − p|) from the centre's direction.
+      const Eigen::Vector2d at(0.3, 0.0), centre(1.0, offset);
+      const double angle =
+          std::acos((shorter(p).aim - at).normalized().dot((centre - at).normalized()));
+      EXPECT_NEAR(angle, std::asin((0.15 + 0.12 + 0.1) / (centre - at).norm()), 1e-9);
+    }
+  }
+}
+
 TEST(GoToTarget, CommandsStayWithinTheLimits) {
   GoToTarget steer({0.5, 3.0}, kMax, {{0.2, 1.0, 0.2, 0.1}});
   for (double yaw = -3.0; yaw <= 3.0; yaw += 0.25) {

@@ -24,6 +24,17 @@
 
 namespace walkgen {
 
+/// How GoToTarget chooses the side to pass a blocking obstacle on.
+enum class PassSide {
+  toward_heading,  ///< the tangent closer to the robot's heading
+  /// the shorter way: away from the obstacle's centre as seen from the straight line to the
+  /// target. Unlike toward_heading it does not flip with the gait's sway, and a camera sees
+  /// it (the obstacle left of the target: pass on the right), which behavioural cloning needs
+  shorter,
+  left,   ///< always on the obstacle's left (it stays on the robot's right)
+  right,  ///< always on the obstacle's right
+};
+
 /// Settings of GoToTarget. Lengths [m], angles [rad].
 struct GoToTargetSettings {
   double stop_distance = 0.2;        ///< reached when the robot is this close to the target
@@ -37,6 +48,8 @@ struct GoToTargetSettings {
   /// camera looking ahead keeps the target in view while passing an obstacle (the way around
   /// becomes a curve; the NMPC's obstacle rows still keep the feet out). π: no limit.
   double max_aim_off_target = 3.14159265358979323846;
+  /// The side to pass a blocking obstacle on (decided when it starts blocking, then kept).
+  PassSide pass_side = PassSide::toward_heading;
 };
 
 /// The planar pose of the robot: position [m] and heading [rad] in the world frame.
@@ -132,6 +145,12 @@ class GoToTarget {
       // Tangent directions of the circle seen from p: ±asin(r / |c − p|) from the centre's.
       const double half = std::asin(r / to_centre);
       const double base = std::atan2(c.y() - p.y(), c.x() - p.x());
+      if (side_[i] == 0.0 && s_.pass_side != PassSide::toward_heading) {
+        side_[i] = s_.pass_side == PassSide::left    ? 1.0
+                   : s_.pass_side == PassSide::right ? -1.0
+                   : across > 0.0                    ? -1.0
+                                                     : 1.0;
+      }
       if (side_[i] == 0.0) {  // pass on the side of the tangent closer to the heading
         double best = 1e9;
         for (double side : {1.0, -1.0}) {
