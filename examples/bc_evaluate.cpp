@@ -10,12 +10,16 @@
 //     --dagger DIR    with --model: record what the robot sees while the network drives, labelled
 //                     with the expert's commands (DAgger, against the drift of plain cloning)
 // Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
-// final distance, NMPC vs measured ZMP mean, command entropy (eq. 9.1), inference ms per frame)
-// and prints the success rate per task.
+// final distance, NMPC vs measured ZMP mean, command entropy (eq. 9.1), inference ms per frame,
+// the target's and the chair's place)
+// and DIR/bc_paths.csv (one line per tick: task, seed, time, the generator's planar pose, the
+// command; python/plot_bc_evaluation.py --paths draws them in their rooms), and prints the
+// success rate per task.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -94,9 +98,18 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
   std::ofstream csv(out + "/bc_evaluation.csv");
+  std::ofstream paths(out + "/bc_paths.csv");
+  if (!csv.good() || !paths.good()) {
+    std::fprintf(stderr, "bc_evaluate: cannot write %s/bc_evaluation.csv and bc_paths.csv\n",
+                 out.c_str());
+    return 2;
+  }
   csv << "task,seed,reached,collided,fell,time,final_distance,zmp_distance_mean,"
-         "command_entropy,inference_ms\n";
+         "command_entropy,inference_ms,target_x,target_y,chair_x,chair_y,chair_radius\n";
+  paths << "task,seed,time,x,y,yaw,v_x,omega_z\n";
   int total_reached = 0, total = 0;
   for (walkgen::NavigationTask task : tasks) {
     int reached = 0;
@@ -110,12 +123,19 @@ int main(int argc, char** argv) {
       const auto r = walkgen_test::run_navigation_episode(
           scene,
           [&](const walkgen_test::NavigationObservation& o) -> Eigen::Vector3d {
-            if (!network) return scripted(o);
-            const auto t0 = std::chrono::steady_clock::now();
-            const Eigen::Vector3d c = network->step(o.images->left, o.disparity->ptr<float>());
-            inference_s +=
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            ++frames;
+            Eigen::Vector3d c;
+            if (network) {
+              const auto t0 = std::chrono::steady_clock::now();
+              c = network->step(o.images->left, o.disparity->ptr<float>());
+              inference_s +=
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+              ++frames;
+            } else {
+              c = scripted(o);
+            }
+            paths << walkgen::to_string(task) << ',' << scene.seed << ',' << o.time << ','
+                  << o.pose.x << ',' << o.pose.y << ',' << o.pose.yaw << ',' << c.x() << ','
+                  << c.z() << '\n';
             return c;
           },
           [&] {
@@ -139,11 +159,20 @@ int main(int argc, char** argv) {
       reached += r.reached;
       csv << walkgen::to_string(task) << ',' << scene.seed << ',' << int(r.reached) << ','
           << int(r.collided) << ',' << int(r.fell) << ',' << r.time << ',' << r.final_distance
-          << ',' << zmp << ',' << command_entropy(r.commands) << ',' << ms << '\n';
+          << ',' << zmp << ',' << command_entropy(r.commands) << ',' << ms << ','
+          << scene.target.x() << ',' << scene.target.y();
+      if (scene.chairs.empty()) {
+        csv << ",,,\n";
+      } else {
+        csv << ',' << scene.chairs[0].x << ',' << scene.chairs[0].y << ',' << scene.chairs[0].radius
+            << '\n';
+      }
       std::printf("%-10s seed %u: %s after %5.1f s, %.2f m from the target%s%s\n",
                   walkgen::to_string(task), scene.seed, r.reached ? "reached" : "FAILED ", r.time,
                   r.final_distance, r.message.empty() ? "" : ": ", r.message.c_str());
       std::fflush(stdout);
+      csv.flush();  // an interrupted run keeps the episodes it finished
+      paths.flush();
     }
     std::printf("bc_evaluate: %s: %d / %d reached\n", walkgen::to_string(task), reached, layouts);
     total_reached += reached;

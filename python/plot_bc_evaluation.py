@@ -4,11 +4,13 @@ and, per episode, the mean distance between the NMPC's and the measured ZMP agai
 of the network's commands (figure 11.12: does noisier steering cost balance?).
 
     /usr/bin/python3 python/plot_bc_evaluation.py EVAL.csv [EVAL.csv ...] --out bc_evaluation.png
-                                                  [--label NAME ...]
+                                                  [--label NAME ...] [--paths PATHS.png]
 
 Each CSV is one bc_evaluate run (e.g. the network and the scripted expert); --label names them
 (default: the folder of the file). Prints the success rate per task and the correlation of ZMP
-distance and entropy.
+distance and entropy. --paths draws the walked paths of the first run (bc_paths.csv next to its
+bc_evaluation.csv), one panel per task, in the robot's start frame: green reached, red failed,
+the targets as circles and the chairs as grey discs.
 """
 import argparse
 import csv
@@ -29,11 +31,55 @@ def read(path):
     return rows
 
 
+def plot_paths(evaluation_csv, rows, out):
+    """The paths of one bc_evaluate run, one panel per task (see the module's docstring)."""
+    path = os.path.join(os.path.dirname(os.path.abspath(evaluation_csv)), "bc_paths.csv")
+    try:
+        ticks = list(csv.DictReader(open(path)))
+    except OSError as e:
+        sys.exit("plot_bc_evaluation: --paths: %s" % e)
+    if not ticks or not {"task", "seed", "x", "y"} <= set(ticks[0]):
+        sys.exit("plot_bc_evaluation: %s: expected bc_evaluate's path columns" % path)
+    if "target_x" not in rows[0]:
+        sys.exit("plot_bc_evaluation: %s lacks the target's place (rerun bc_evaluate)"
+                 % evaluation_csv)
+    walked = {}
+    for t in ticks:
+        walked.setdefault((t["task"], t["seed"]), []).append((float(t["x"]), float(t["y"])))
+    tasks = []
+    for r in rows:
+        if r["task"] not in tasks:
+            tasks.append(r["task"])
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(tasks), figsize=(3.6 * len(tasks), 3.8), squeeze=False)
+    for ax, task in zip(axes[0], tasks):
+        mine = [r for r in rows if r["task"] == task]
+        for r in mine:
+            xy = np.array(walked.get((task, r["seed"]), [(0.0, 0.0)]))
+            ax.plot(xy[:, 0], xy[:, 1], color="tab:green" if r["reached"] == "1" else "tab:red",
+                    lw=0.8, alpha=0.8)
+            ax.add_patch(plt.Circle((float(r["target_x"]), float(r["target_y"])), 0.05,
+                                    color="tab:orange"))
+            if r.get("chair_radius"):
+                ax.add_patch(plt.Circle((float(r["chair_x"]), float(r["chair_y"])),
+                                        float(r["chair_radius"]), color="grey", alpha=0.4))
+        reached = sum(r["reached"] == "1" for r in mine)
+        ax.set_title("%s: %d / %d reached" % (task, reached, len(mine)))
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("x [m]")
+        ax.plot(0.0, 0.0, "k^")
+    axes[0][0].set_ylabel("y [m]")
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
+    print("plot_bc_evaluation: wrote %s" % out)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("csv", nargs="+")
     parser.add_argument("--out", default="bc_evaluation.png")
     parser.add_argument("--label", action="append", default=[])
+    parser.add_argument("--paths", help="also draw the first run's paths into this PNG")
     args = parser.parse_args()
     labels = args.label + [os.path.basename(os.path.dirname(os.path.abspath(p)))
                            for p in args.csv[len(args.label):]]
@@ -79,6 +125,8 @@ def main():
     fig.tight_layout()
     fig.savefig(args.out, dpi=100)
     print("plot_bc_evaluation: wrote %s" % args.out)
+    if args.paths:
+        plot_paths(args.csv[0], runs[0], args.paths)
 
 
 if __name__ == "__main__":
