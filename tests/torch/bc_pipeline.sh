@@ -67,6 +67,16 @@ if len(dagger) < 35:  # 40 ticks in 16 s
     fail("DAgger recorded %d frames, expected one per tick of 16 s" % len(dagger))
 if not any(abs(float(d[6])) > 0.01 or float(d[4]) > 0.01 for d in dagger):
     fail("the DAgger labels are not the expert's commands: %s" % dagger[:3])
+paths = list(csv.DictReader(open(os.path.join(out, "bc_paths.csv"))))
+if len(paths) != len(dagger) or abs(float(paths[0]["x"])) > 0.05:
+    fail("bc_paths.csv: %d ticks for %d frames, starting at x = %s"
+         % (len(paths), len(dagger), paths[0]["x"] if paths else "?"))
+if not float(paths[-1]["x"]) > float(paths[0]["x"]) + 0.1:
+    fail("the network did not walk toward the target ahead: x %s -> %s"
+         % (paths[0]["x"], paths[-1]["x"]))
 print("bc_pipeline: training MSE %.4f -> %.4f, KL v_x %.3f omega %.3f, %.1f s in the loop at %.2f ms per frame"
       % (first, last, kl["v_x"], kl["omega_z"], float(rows[0]["time"]), float(rows[0]["inference_ms"])))
 PY
+"$python" "$(dirname "$train")/plot_bc_evaluation.py" "$out/bc_evaluation.csv" --out "$out/bc_evaluation.png" \
+  --paths "$out/bc_paths.png"
+test -s "$out/bc_evaluation.png" && test -s "$out/bc_paths.png"
