@@ -28,8 +28,9 @@ namespace walkgen {
 enum class PassSide {
   toward_heading,  ///< the tangent closer to the robot's heading
   /// the shorter way: away from the obstacle's centre as seen from the straight line to the
-  /// target. Unlike toward_heading it does not flip with the gait's sway, and a camera sees
-  /// it (the obstacle left of the target: pass on the right), which behavioural cloning needs
+  /// target, from the pose where the obstacle starts blocking. It ignores the heading, but a
+  /// swaying pose (a camera's) can still flip it for an obstacle near that line; a caller that
+  /// knows the start can decide once with left / right (the cloning expert does)
   shorter,
   left,   ///< always on the obstacle's left (it stays on the robot's right)
   right,  ///< always on the obstacle's right
