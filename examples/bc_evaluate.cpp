@@ -7,6 +7,8 @@
 //     --tasks    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
 //     --layouts  rooms per task (default 20), seeds S, S+1, ... (default 900000: not recorded)
 //     --time-limit T  simulated seconds per episode (default: from the room)
+//     --handover T    with --model: the network drives for T simulated seconds, then the expert
+//                     (does the expert recover from where the network goes?)
 //     --dagger DIR    with --model: record what the robot sees while the network drives, labelled
 //                     with the expert's commands (DAgger, against the drift of plain cloning)
 // Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
@@ -52,6 +54,7 @@ int main(int argc, char** argv) {
   std::string model, out = ".";
   bool expert = false;
   double time_limit = 0.0;  // 0: from the scene
+  double handover = -1.0;   // < 0: the network drives the whole episode
   std::string dagger;       // record the expert's labels of the network's states here
   int layouts = 20;
   std::uint32_t seed = 900000;
@@ -69,6 +72,8 @@ int main(int argc, char** argv) {
         seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
       } else if (a == "--time-limit" && i + 1 < argc) {
         time_limit = std::atof(argv[++i]);
+      } else if (a == "--handover" && i + 1 < argc) {
+        handover = std::atof(argv[++i]);
       } else if (a == "--dagger" && i + 1 < argc) {
         dagger = argv[++i];
       } else if (a == "--out" && i + 1 < argc) {
@@ -83,10 +88,11 @@ int main(int argc, char** argv) {
       throw walkgen::invalid_argument("give --model FILE or --expert, and --layouts >= 1");
     }
   } catch (const walkgen::invalid_argument& e) {
-    std::fprintf(stderr,
-                 "bc_evaluate: %s\nusage: bc_evaluate (--model FILE | --expert) [--tasks LIST] "
-                 "[--layouts N] [--seed S] [--time-limit T] [--dagger DIR] [--out DIR]\n",
-                 e.what());
+    std::fprintf(
+        stderr,
+        "bc_evaluate: %s\nusage: bc_evaluate (--model FILE | --expert) [--tasks LIST] "
+        "[--layouts N] [--seed S] [--time-limit T] [--handover T] [--dagger DIR] [--out DIR]\n",
+        e.what());
     return 2;
   }
   std::unique_ptr<walkgen::VelocityNetwork> network;
@@ -124,7 +130,10 @@ int main(int argc, char** argv) {
           scene,
           [&](const walkgen_test::NavigationObservation& o) -> Eigen::Vector3d {
             Eigen::Vector3d c;
-            if (network) {
+            if (network && handover >= 0.0) {
+              const Eigen::Vector3d e = scripted(o);  // it follows the episode from the start
+              c = o.time < handover ? network->step(o.images->left, o.disparity->ptr<float>()) : e;
+            } else if (network) {
               const auto t0 = std::chrono::steady_clock::now();
               c = network->step(o.images->left, o.disparity->ptr<float>());
               inference_s +=

@@ -4,14 +4,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
 
 using walkgen::GoToTarget;
+using walkgen::GoToTargetCommand;
 using walkgen::PlanarPose;
 
 const Eigen::Vector3d kMax(0.034, 0.0045, 0.075);  // Heicub's max_command
+constexpr double kPi = 3.14159265358979323846;
 
 TEST(GoToTarget, WalksStraightAtATargetAheadAndStopsWithinTheStopDistance) {
   GoToTarget steer({2.0, 0.0}, kMax);
@@ -116,6 +119,82 @@ TEST(GoToTarget, PassSideChoosesTheSideWhateverTheHeading) {
       const double angle =
           std::acos((shorter(p).aim - at).normalized().dot((centre - at).normalized()));
       EXPECT_NEAR(angle, std::asin((0.15 + 0.12 + 0.1) / (centre - at).norm()), 1e-9);
+    }
+  }
+}
+
+TEST(GoToTarget, InsideTheInflatedCircleItWalksAlongTheCircleOnTheKeptSide) {
+  // Pushed inside radius + margin + clearance (0.37 m): the aim goes along the circle on the
+  // chosen side, turned outward the deeper it is (90° + 90° · depth / r from the centre's
+  // direction), the same side on both sides of the straight line (no flipping with sway).
+  const walkgen::CircleObstacle<double> chair{1.0, 0.05, 0.15, 0.12};
+  const double r = 0.15 + 0.12 + 0.1;
+  walkgen::GoToTargetSettings s;
+  s.pass_side = walkgen::PassSide::right;
+  GoToTarget steer({2.0, 0.0}, kMax, {chair}, s);
+  for (double y : {0.0, 0.1, 0.0, 0.1}) {
+    const Eigen::Vector2d p(0.7, y), centre(1.0, 0.05);
+    const auto c = steer(PlanarPose{p.x(), p.y(), 0.0});
+    EXPECT_EQ(c.passing, 0);
+    const Eigen::Vector2d to_aim = c.aim - p, to_centre = centre - p;
+    const double angle = std::acos(to_aim.normalized().dot(to_centre.normalized()));
+    EXPECT_NEAR(angle, kPi / 2.0 * (2.0 - to_centre.norm() / r), 1e-9) << "y " << y;
+    // Right of the centre's direction (clockwise from it): a negative cross product.
+    EXPECT_LT(to_centre.x() * to_aim.y() - to_centre.y() * to_aim.x(), 0.0) << "y " << y;
+    EXPECT_LT(c.command.z(), 0.0) << "y " << y;  // turning right, away from the chair
+    EXPECT_EQ(c.command.x(), 0.0) << "y " << y;  // more than turn_in_place_angle to turn
+  }
+  EXPECT_EQ(steer(PlanarPose{1.5, -0.4, 0.0}).passing, -1);  // past it: nothing blocks
+}
+
+TEST(GoToTarget, TheAimLimitOpensNearTheObstacleAndLeadsAroundIt) {
+  const walkgen::CircleObstacle<double> chair{1.0, 0.05, 0.15, 0.12};
+  const double r = 0.15 + 0.12 + 0.1, limit = 16.0 * kPi / 180.0;
+  walkgen::GoToTargetSettings s;
+  s.max_aim_off_target = limit;
+  s.aim_limit_opens_within = 0.25;
+  s.pass_side = walkgen::PassSide::right;
+  const Eigen::Vector2d target(2.0, 0.0), centre(1.0, 0.05);
+  auto off = [&](const GoToTargetCommand& c, const Eigen::Vector2d& p) {
+    return std::acos((c.aim - p).normalized().dot((target - p).normalized()));
+  };
+  // Far from the circle the limit holds; nearer it opens linearly; at the circle it is gone.
+  for (double gap : {0.4, 0.3, 0.2, 0.1, 0.0}) {
+    const Eigen::Vector2d p = centre - Eigen::Vector2d(r + gap, 0.05);
+    GoToTarget limited(target, kMax, {chair}, s);
+    walkgen::GoToTargetSettings free_settings = s;
+    free_settings.max_aim_off_target = kPi;
+    GoToTarget free(target, kMax, {chair}, free_settings);
+    const auto c = limited(PlanarPose{p.x(), p.y(), 0.0});
+    const double open = std::clamp(1.0 - ((centre - p).norm() - r) / 0.25, 0.0, 1.0);
+    const double wide = off(free(PlanarPose{p.x(), p.y(), 0.0}), p);
+    EXPECT_NEAR(off(c, p), std::min(wide, limit + open * (kPi - limit)), 1e-9) << "gap " << gap;
+    EXPECT_LT(c.aim.y(), p.y()) << "gap " << gap;  // on the kept side
+  }
+  // A unicycle driven by the commands from right in front of the chair (where a cloned
+  // network ends up) gets around it without entering radius + margin and reaches the target
+  // (in 78 s); with the fixed limit it walks through the chair (0.09 m from its centre), where
+  // the NMPC's obstacle rows stop the real robot.
+  for (double opens : {0.25, 0.0}) {
+    s.aim_limit_opens_within = opens;
+    GoToTarget steer(target, kMax, {chair}, s);
+    PlanarPose pose{0.66, 0.05, 0.0};
+    double closest = 1e9, t = 0.0;
+    bool reached = false;
+    for (; t < 400.0 && !reached; t += 0.1) {
+      const auto c = steer(pose);
+      reached = c.reached;
+      pose.x += c.command.x() * std::cos(pose.yaw) * 0.1;
+      pose.y += c.command.x() * std::sin(pose.yaw) * 0.1;
+      pose.yaw += c.command.z() * 0.1;
+      closest = std::min(closest, std::hypot(pose.x - centre.x(), pose.y - centre.y()));
+    }
+    if (opens > 0.0) {
+      EXPECT_TRUE(reached);
+      EXPECT_LT(t, 150.0);
+      EXPECT_GT(closest, 0.15 + 0.12);
+    } else {
+      EXPECT_LT(closest, 0.15 + 0.12);  // it walks into the NMPC's circle, which stops it
     }
   }
 }

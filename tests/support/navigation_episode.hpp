@@ -64,25 +64,29 @@ inline double half_horizontal_fov(const walkgen::CameraImage& camera) {
   return std::atan(std::tan(camera.fovy / 2.0) * double(camera.width) / double(camera.height));
 }
 
-/// The scripted expert that records the demonstrations. It knows the scene, but acts only on
-/// what the left chest camera shows, from that camera's pose (which sways ±0.12 m sideways with
-/// the gait), so that a network which sees its images can imitate it (a first expert steered
-/// from the middle of the feet, turned toward targets outside the view and saturated ω at 4°
-/// of heading error, and cloning it did not learn):
+/// The scripted expert that records the demonstrations. It knows the scene, but decides what
+/// is in view from the left chest camera's pose, so that a network which sees its images can
+/// imitate it (a first expert turned toward targets outside the view and saturated ω at 4° of
+/// heading error, and cloning it did not learn):
 /// - the target outside the view (±(half the field of view − 0.05 rad)): turn on the spot,
 ///   toward it the shorter way once it has been in view in this episode, else to the right
-///   until it comes into view (the search turn of figure 11.9);
+///   until it comes into view (the search turn of figure 11.9); except while passing a chair
+///   with the target less than 90° off: then it keeps going around;
 /// - in view: walkgen::GoToTarget around the chairs, with a gentle heading gain (ω saturates
-///   at 12° of bearing), aiming at most 16° off the target so that it stays in view while
-///   passing a chair on the side away from its centre as seen from the start's line to the
-///   target, decided once (what the first image shows: the chair left of the target, pass on
-///   the right; a side decided on the way from the camera's pose flipped with the gait's sway
-///   of ±0.12 m, the expert sometimes chose the long way and stalled at the chair, and a
-///   network trained on such demonstrations passed every chair on the left),
-///   sideways velocity never used (as the thesis's users did, §11.1.1); stop
-///   with the camera 0.15 m from the target's centre;
+///   at 12° of bearing), aiming at most 16° off the target so that it stays in view, a limit
+///   that opens within 0.25 m of a chair's inflated circle (a robot that walked up to the chair,
+///   as a cloned network does, gets commands that lead around it, where a fixed limit pointed
+///   into the circle and the commands flipped between ±ω_max), passing the chair on the side
+///   away from its centre as seen from the start's line to the target, decided once (what the
+///   first image shows: the chair left of the target, pass on the right; a side decided on the
+///   way flipped with the gait's sway, and a network trained on such demonstrations passed
+///   every chair on the left); it steers from the middle of the feet, not from the camera,
+///   whose sideways sway of ±0.12 m with the gait made the aim near the chair swing between
+///   the tangent and the limit, and the expert stall at the chair;
+///   sideways velocity never used (as the thesis's users did, §11.1.1); stop with the middle
+///   of the feet 0.15 m from the target's centre;
 /// - the person within 1.2 m and 60° of the camera's axis: wait until it has passed.
-/// Without images (o.images null) it steers from o.pose and never searches.
+/// Without images (o.images null) it never searches.
 class ScriptedExpert {
  public:
   ScriptedExpert(const walkgen::NavigationScene& scene, const Eigen::Vector3d& max_command,
@@ -94,6 +98,7 @@ class ScriptedExpert {
           s.stop_distance = stop_distance;
           s.heading_gain = 0.35;
           s.max_aim_off_target = 16.0 * EIGEN_PI / 180.0;  // the target stays in view
+          s.aim_limit_opens_within = 0.25;                 // ... unless the chair is close
           s.pass_side = side_for(scene);                   // a side the first image explains
           return s;
         }()) {}
@@ -105,15 +110,16 @@ class ScriptedExpert {
         in_sight(scene_.person.position(o.time), pose, 1.2, 60.0 * EIGEN_PI / 180.0)) {
       return Eigen::Vector3d::Zero();  // let the person pass
     }
+    const walkgen::GoToTargetCommand steer = steer_(o.pose);
     if (o.images != nullptr) {
       const double bearing = bearing_of(scene_.target, pose);
       if (std::abs(bearing) < half_horizontal_fov(o.images->left) - 0.05) {
         seen_ = true;
-      } else {
+      } else if (!seen_ || steer.passing < 0 || std::abs(bearing) > EIGEN_PI / 2.0) {
         return {0.0, 0.0, seen_ ? std::copysign(limit_.z(), bearing) : -limit_.z()};
       }
     }
-    Eigen::Vector3d c = steer_(pose).command;
+    Eigen::Vector3d c = steer.command;
     c.y() = 0.0;
     return c;
   }

@@ -11,7 +11,9 @@
 /// when the heading error is below turn_in_place_angle, slower near the target, stop within
 /// stop_distance. The aim point is the target, or, when the straight line to it passes through
 /// an obstacle inflated by radius + margin + clearance, the tangent point of that circle on the
-/// side the robot already faces.
+/// side chosen by pass_side; inside the inflated circle (pushed there, or started there) it
+/// walks along the circle on that side, turned outward the deeper it is, so that the command
+/// stays the same on both sides of a swaying pose.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -49,6 +51,11 @@ struct GoToTargetSettings {
   /// camera looking ahead keeps the target in view while passing an obstacle (the way around
   /// becomes a curve; the NMPC's obstacle rows still keep the feet out). π: no limit.
   double max_aim_off_target = 3.14159265358979323846;
+  /// Within this distance [m] of a blocking obstacle's inflated circle the limit above opens,
+  /// linearly, to none at the circle, so that a robot which walked up to the obstacle still
+  /// turns enough to get around it (at the circle the tangent is 90° off the centre). 0: the
+  /// limit holds everywhere.
+  double aim_limit_opens_within = 0.0;
   /// The side to pass a blocking obstacle on (decided when it starts blocking, then kept).
   PassSide pass_side = PassSide::toward_heading;
 };
@@ -64,6 +71,7 @@ struct GoToTargetCommand {
   bool reached = false;                               ///< within stop_distance: command is zero
   Eigen::Vector2d aim = Eigen::Vector2d::Zero();      ///< the point steered at, world frame
   double distance = 0.0;                              ///< to the target [m]
+  int passing = -1;  ///< the index of the obstacle the aim goes around, −1: none blocks
 };
 
 /// Steers a robot to `target` within `max_command` (WalkingSettings::max_command: |v_x|, |v_y|,
@@ -102,6 +110,9 @@ class GoToTarget {
     check_argument(s_.max_aim_off_target > 0.0 && s_.max_aim_off_target <= 3.14159265358979323846,
                    "GoToTargetSettings.max_aim_off_target", "an angle in (0, π]",
                    s_.max_aim_off_target);
+    check_argument(s_.aim_limit_opens_within >= 0.0 && std::isfinite(s_.aim_limit_opens_within),
+                   "GoToTargetSettings.aim_limit_opens_within", "a length >= 0",
+                   s_.aim_limit_opens_within);
     check_argument(s_.command_fraction > 0.0 && s_.command_fraction <= 1.0,
                    "GoToTargetSettings.command_fraction", "a fraction in (0, 1]",
                    s_.command_fraction);
@@ -125,6 +136,7 @@ class GoToTarget {
     const Eigen::Vector2d d = (target_ - p) / out.distance;
     // The nearest obstacle that blocks the straight line to the target decides the aim.
     double nearest = out.distance;
+    double aim_limit = s_.max_aim_off_target;
     for (std::size_t i = 0; i < obstacles_.size(); ++i) {
       const auto& o = obstacles_[i];
       const Eigen::Vector2d c(o.x, o.y);
@@ -139,12 +151,11 @@ class GoToTarget {
       }
       if (along >= nearest) continue;
       nearest = along;
-      if (to_centre <= r) {  // inside the inflated circle: straight away from its centre
-        out.aim = p + (p - c).normalized() * r;
-        continue;
-      }
-      // Tangent directions of the circle seen from p: ±asin(r / |c − p|) from the centre's.
-      const double half = std::asin(r / to_centre);
+      out.passing = int(i);
+      // Tangent directions of the circle seen from p: ±asin(r / |c − p|) from the centre's;
+      // inside it, ±(90° + up to 90° outward, the deeper the more): along the circle.
+      const double half =
+          to_centre > r ? std::asin(r / to_centre) : kPi / 2.0 * (2.0 - to_centre / r);
       const double base = std::atan2(c.y() - p.y(), c.x() - p.x());
       if (side_[i] == 0.0 && s_.pass_side != PassSide::toward_heading) {
         side_[i] = s_.pass_side == PassSide::left    ? 1.0
@@ -156,7 +167,7 @@ class GoToTarget {
         double best = 1e9;
         for (double side : {1.0, -1.0}) {
           const double a = base + side * half;
-          const double turn = std::abs(std::remainder(a - pose.yaw, 2.0 * 3.14159265358979323846));
+          const double turn = std::abs(std::remainder(a - pose.yaw, 2.0 * kPi));
           if (turn < best) {
             best = turn;
             side_[i] = side;
@@ -164,13 +175,17 @@ class GoToTarget {
         }
       }
       const double a = base + side_[i] * half;
-      const double tangent = std::sqrt(to_centre * to_centre - r * r);
+      const double tangent = std::sqrt(std::max(0.0, to_centre * to_centre - r * r));
       out.aim = p + Eigen::Vector2d(std::cos(a), std::sin(a)) * (tangent + s_.clearance);
+      if (s_.aim_limit_opens_within > 0.0) {
+        const double open = std::clamp(1.0 - (to_centre - r) / s_.aim_limit_opens_within, 0.0, 1.0);
+        aim_limit = s_.max_aim_off_target + open * (kPi - s_.max_aim_off_target);
+      }
     }
     Eigen::Vector2d to_aim = out.aim - p;
     const double off = std::atan2(d.x() * to_aim.y() - d.y() * to_aim.x(), d.dot(to_aim));
-    if (std::abs(off) > s_.max_aim_off_target) {
-      const double a = std::atan2(d.y(), d.x()) + std::copysign(s_.max_aim_off_target, off);
+    if (std::abs(off) > aim_limit) {
+      const double a = std::atan2(d.y(), d.x()) + std::copysign(aim_limit, off);
       to_aim = Eigen::Vector2d(std::cos(a), std::sin(a)) * to_aim.norm();
       out.aim = p + to_aim;
     }
@@ -188,6 +203,8 @@ class GoToTarget {
   const Eigen::Vector2d& target() const { return target_; }
 
  private:
+  static constexpr double kPi = 3.14159265358979323846;
+
   Eigen::Vector2d target_;
   Eigen::Vector3d max_command_;
   std::vector<CircleObstacle<double>> obstacles_;
