@@ -7,8 +7,9 @@
 //     --tasks    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
 //     --layouts  rooms per task (default 20), seeds S, S+1, ... (default 900000: not recorded)
 //     --time-limit T  simulated seconds per episode (default: from the room)
-//     --handover T    with --model: the network drives for T simulated seconds, then the expert
-//                     (does the expert recover from where the network goes?)
+//     --handover T    the network (with --expert: a blind walk straight ahead, into the chair of
+//                     an obstacle room) drives for T simulated seconds, then the expert (does the
+//                     expert, which DAgger asks for labels there, recover from such states?)
 //     --dagger DIR    with --model: record what the robot sees while the network drives, labelled
 //                     with the expert's commands (DAgger, against the drift of plain cloning)
 // Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
@@ -16,7 +17,8 @@
 // the target's and the chair's place)
 // and DIR/bc_paths.csv (one line per tick: task, seed, time, the generator's planar pose, the
 // command; python/plot_bc_evaluation.py --paths draws them in their rooms), and prints the
-// success rate per task.
+// success rate per task. Exit status: 2 for bad arguments; with --expert, 1 when an episode did
+// not reach its target (the expert is the baseline every room must be solvable by).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -116,12 +118,13 @@ int main(int argc, char** argv) {
   csv << "task,seed,reached,collided,fell,time,final_distance,zmp_distance_mean,"
          "command_entropy,inference_ms,target_x,target_y,chair_x,chair_y,chair_radius\n";
   paths << "task,seed,time,x,y,yaw,v_x,omega_z\n";
+  const Eigen::Vector3d max_command = walkgen::heicub_settings().max_command;
   int total_reached = 0, total = 0;
   for (walkgen::NavigationTask task : tasks) {
     int reached = 0;
     for (int l = 0; l < layouts; ++l) {
       const auto scene = walkgen::make_navigation_scene(task, seed + std::uint32_t(l));
-      walkgen_test::ScriptedExpert scripted(scene, walkgen::heicub_settings().max_command);
+      walkgen_test::ScriptedExpert scripted(scene, max_command);
       std::unique_ptr<walkgen::DemonstrationRecorder> recorder;
       double inference_s = 0.0;
       long frames = 0;
@@ -130,17 +133,16 @@ int main(int argc, char** argv) {
           scene,
           [&](const walkgen_test::NavigationObservation& o) -> Eigen::Vector3d {
             Eigen::Vector3d c;
-            if (network && handover >= 0.0) {
-              const Eigen::Vector3d e = scripted(o);  // it follows the episode from the start
-              c = o.time < handover ? network->step(o.images->left, o.disparity->ptr<float>()) : e;
-            } else if (network) {
+            // The expert follows the episode from its start, also before it takes over.
+            if (!network || handover >= 0.0) c = scripted(o);
+            if (network && (handover < 0.0 || o.time < handover)) {
               const auto t0 = std::chrono::steady_clock::now();
               c = network->step(o.images->left, o.disparity->ptr<float>());
               inference_s +=
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
               ++frames;
-            } else {
-              c = scripted(o);
+            } else if (!network && o.time < handover) {
+              c = Eigen::Vector3d(0.95 * max_command.x(), 0.0, 0.0);  // blind, straight ahead
             }
             paths << walkgen::to_string(task) << ',' << scene.seed << ',' << o.time << ','
                   << o.pose.x << ',' << o.pose.y << ',' << o.pose.yaw << ',' << c.x() << ','
@@ -189,5 +191,5 @@ int main(int argc, char** argv) {
   }
   std::printf("bc_evaluate: %d / %d episodes reached the target (%s); %s/bc_evaluation.csv\n",
               total_reached, total, expert ? "scripted expert" : model.c_str(), out.c_str());
-  return 0;
+  return expert && total_reached < total ? 1 : 0;
 }
