@@ -219,6 +219,11 @@ TEST(GoToTarget, BadInputThrows) {
   walkgen::GoToTargetSettings s;
   s.command_fraction = 0.0;
   EXPECT_THROW(GoToTarget({1.0, 0.0}, kMax, {}, s), walkgen::invalid_argument);
+  for (double opens : {-0.1, std::nan("")}) {
+    walkgen::GoToTargetSettings bad;
+    bad.aim_limit_opens_within = opens;
+    EXPECT_THROW(GoToTarget({1.0, 0.0}, kMax, {}, bad), walkgen::invalid_argument);
+  }
   GoToTarget ok({1.0, 0.0}, kMax);
   EXPECT_THROW(ok(PlanarPose{0.0, std::nan(""), 0.0}), walkgen::invalid_argument);
 }
