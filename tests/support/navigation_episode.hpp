@@ -72,19 +72,14 @@ inline double half_horizontal_fov(const walkgen::CameraImage& camera) {
 ///   toward it the shorter way once it has been in view in this episode, else to the right
 ///   until it comes into view (the search turn of figure 11.9); except while passing a chair
 ///   with the target less than 90° off: then it keeps going around;
-/// - in view: walkgen::GoToTarget around the chairs, with a gentle heading gain (ω saturates
-///   at 12° of bearing), aiming at most 16° off the target so that it stays in view, a limit
-///   that opens within 0.25 m of a chair's inflated circle (a robot that walked up to the chair,
-///   as a cloned network does, gets commands that lead around it, where a fixed limit pointed
-///   into the circle and the commands flipped between ±ω_max), passing the chair on the side
-///   away from its centre as seen from the start's line to the target, decided once (what the
-///   first image shows: the chair left of the target, pass on the right; a side decided on the
-///   way flipped with the gait's sway, and a network trained on such demonstrations passed
-///   every chair on the left); it steers from the middle of the feet, not from the camera,
-///   whose sideways sway of ±0.12 m with the gait made the aim near the chair swing between
-///   the tangent and the limit, and the expert stall at the chair;
-///   sideways velocity never used (as the thesis's users did, §11.1.1); stop with the middle
-///   of the feet 0.15 m from the target's centre;
+/// - in view: walkgen::GoToTarget from the middle of the feet (the camera sways ±0.12 m with
+///   the gait, which swung the aim near the chair), with a gentle heading gain (ω saturates at
+///   12° of bearing), aiming at most 16° off the target so that it stays in view; the limit
+///   opens within 0.25 m of a chair's inflated circle, so that a robot which walked up to the
+///   chair (where DAgger asks the expert) is led around it; the chair is passed on the side
+///   away from its centre as seen from the start's line to the target, decided once (what
+///   the first image shows); sideways velocity never used (as the thesis's users did,
+///   §11.1.1); stop with the middle of the feet 0.15 m from the target's centre;
 /// - the person within 1.2 m and 60° of the camera's axis: wait until it has passed.
 /// Without images (o.images null) it never searches.
 class ScriptedExpert {

@@ -107,7 +107,7 @@ class GoToTarget {
                    s_.min_speed_fraction);
     check_argument(s_.clearance >= 0.0, "GoToTargetSettings.clearance", "a length >= 0",
                    s_.clearance);
-    check_argument(s_.max_aim_off_target > 0.0 && s_.max_aim_off_target <= 3.14159265358979323846,
+    check_argument(s_.max_aim_off_target > 0.0 && s_.max_aim_off_target <= kPi,
                    "GoToTargetSettings.max_aim_off_target", "an angle in (0, π]",
                    s_.max_aim_off_target);
     check_argument(s_.aim_limit_opens_within >= 0.0 && std::isfinite(s_.aim_limit_opens_within),
