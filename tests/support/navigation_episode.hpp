@@ -76,9 +76,8 @@ inline double half_horizontal_fov(const walkgen::CameraImage& camera) {
 ///   the gait, which swung the aim near the chair), with a gentle heading gain (ω saturates at
 ///   12° of bearing), aiming at most 16° off the target so that it stays in view; the limit
 ///   opens within 0.25 m of a chair's inflated circle, so that a robot which walked up to the
-///   chair (where DAgger asks the expert) is led around it; the chair is passed on the side
-///   away from its centre as seen from the start's line to the target, decided once (what
-///   the first image shows); sideways velocity never used (as the thesis's users did,
+///   chair (where DAgger asks the expert) is led around it; every chair is passed on its left
+///   (side_for); sideways velocity never used (as the thesis's users did,
 ///   §11.1.1); stop with the middle of the feet 0.15 m from the target's centre;
 /// - the person within 1.2 m and 60° of the camera's axis: wait until it has passed.
 /// Without images (o.images null) it never searches.
@@ -120,14 +119,15 @@ class ScriptedExpert {
   }
 
  private:
-  /// The way around the room's first chair: away from its centre as seen from the straight
-  /// line from the start (the origin) to the target. Without chairs (the person of the dynamic
-  /// room, whom the expert waits for): the side closer to the heading.
+  /// The way around a chair: always on its left, the chair staying on the robot's right (a
+  /// convention, like keeping right on a road). The shorter way, away from the chair's centre
+  /// as seen from the line to the target, depends on the chair's 0–0.08 m offset from that
+  /// line, a few pixels in the first image and nothing once the chair fills the view; a
+  /// network cloned from it passed 12 of 12 chairs right of the line, 2 of 8 left of it.
+  /// Without chairs (the person of the dynamic room, whom the expert waits for): the side
+  /// closer to the heading.
   static walkgen::PassSide side_for(const walkgen::NavigationScene& scene) {
-    if (scene.chairs.empty()) return walkgen::PassSide::toward_heading;
-    const Eigen::Vector2d c(scene.chairs.front().x, scene.chairs.front().y);
-    const double across = scene.target.x() * c.y() - scene.target.y() * c.x();  // > 0: left
-    return across > 0.0 ? walkgen::PassSide::right : walkgen::PassSide::left;
+    return scene.chairs.empty() ? walkgen::PassSide::toward_heading : walkgen::PassSide::left;
   }
 
   /// The direction of `point` seen from `pose`, from its heading, in (−π, π] (left > 0).
