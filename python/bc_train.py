@@ -26,7 +26,8 @@ network's tanh output times the limits is the command.
 Split: about 90 % of the episodes for training, 10 % (at least one) for validation, chosen by
 a hash of the episode's name, so that the validation frames come from rooms the network has not
 seen (the thesis split frames at random) and the split does not change when data is added.
-The weights with the best validation loss are kept. Writes to OUT: model.pt (TorchScript, with
+The weights with the best validation loss are kept. Writes to OUT: command.txt (this command
+line), model.pt (TorchScript, with
 `encode(frame)`, `head(features)` and the attributes `sequence` and `hidden`), training_log.csv
 (epoch, train and validation MSE, seconds), training.png (the loss curves, figure 11.3), and
 histograms.png and histograms.csv: ground truth vs prediction on the validation split with the
@@ -37,6 +38,7 @@ import csv
 import math
 import os
 import random
+import shlex
 import sys
 import time
 import zlib
@@ -274,6 +276,8 @@ def main():
     np.random.seed(args.seed)
     torch.set_num_threads(args.threads)
     os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, "command.txt"), "w") as f:  # how this model was made
+        f.write(" ".join(shlex.quote(a) for a in [sys.executable] + sys.argv) + "\n")
 
     episodes = {}
     for i, folder in enumerate(args.data):

@@ -51,6 +51,9 @@ for f in ("model/model.pt", "model/training.png", "model/histograms.png"):
 log = list(csv.DictReader(open(os.path.join(out, "model/training_log.csv"))))
 if len(log) != 3:
     fail("expected 3 epochs in training_log.csv, got %d" % len(log))
+command = open(os.path.join(out, "model/command.txt")).read()
+if "--epochs 3 --width 4" not in command:
+    fail("model/command.txt does not hold the training command: %r" % command)
 first, last = float(log[0]["train_mse"]), float(log[-1]["train_mse"])
 if not last < first:
     fail("the training loss did not fall: %g -> %g" % (first, last))
