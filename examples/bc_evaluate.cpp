@@ -4,6 +4,7 @@
 // of each task; or, with --expert, the scripted expert that recorded the demonstrations.
 //
 //   bc_evaluate (--model FILE | --expert) [--tasks LIST] [--layouts N] [--seed S] [--out DIR]
+//               [--require-reached]
 //     --tasks    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
 //     --layouts  rooms per task (default 20), seeds S, S+1, ... (default 900000: not recorded)
 //     --time-limit T  simulated seconds per episode (default: from the room)
@@ -12,13 +13,15 @@
 //                     expert, which DAgger asks for labels there, recover from such states?)
 //     --dagger DIR    with --model: record what the robot sees while the network drives, labelled
 //                     with the expert's commands (DAgger, against the drift of plain cloning)
+//     --require-reached  exit status 1 when an episode did not reach its target (always so
+//                     with --expert: the expert is the baseline every room must be solvable by)
 // Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
 // final distance, NMPC vs measured ZMP mean, command entropy (eq. 9.1), inference ms per frame,
 // the target's and the chair's place)
 // and DIR/bc_paths.csv (one line per tick: task, seed, time, the generator's planar pose, the
 // command; python/plot_bc_evaluation.py --paths draws them in their rooms), and prints the
-// success rate per task. Exit status: 2 for bad arguments; with --expert, 1 when an episode did
-// not reach its target (the expert is the baseline every room must be solvable by).
+// success rate per task. Exit status: 2 for bad arguments; 1 with --require-reached (or
+// --expert) when an episode did not reach its target; else 0.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -55,9 +58,10 @@ double command_entropy(const std::vector<Eigen::Vector3d>& commands) {
 int main(int argc, char** argv) {
   std::string model, out = ".";
   bool expert = false;
-  double time_limit = 0.0;  // 0: from the scene
-  double handover = -1.0;   // < 0: the network drives the whole episode
-  std::string dagger;       // record the expert's labels of the network's states here
+  bool require_reached = false;  // exit status 1 when an episode misses (implied by --expert)
+  double time_limit = 0.0;       // 0: from the scene
+  double handover = -1.0;        // < 0: the network drives the whole episode
+  std::string dagger;            // record the expert's labels of the network's states here
   int layouts = 20;
   std::uint32_t seed = 900000;
   std::vector<walkgen::NavigationTask> tasks = walkgen::all_navigation_tasks();
@@ -68,6 +72,8 @@ int main(int argc, char** argv) {
         model = argv[++i];
       } else if (a == "--expert") {
         expert = true;
+      } else if (a == "--require-reached") {
+        require_reached = true;
       } else if (a == "--layouts" && i + 1 < argc) {
         layouts = std::atoi(argv[++i]);
       } else if (a == "--seed" && i + 1 < argc) {
@@ -93,7 +99,8 @@ int main(int argc, char** argv) {
     std::fprintf(
         stderr,
         "bc_evaluate: %s\nusage: bc_evaluate (--model FILE | --expert) [--tasks LIST] "
-        "[--layouts N] [--seed S] [--time-limit T] [--handover T] [--dagger DIR] [--out DIR]\n",
+        "[--layouts N] [--seed S] [--time-limit T] [--handover T] [--dagger DIR] [--out DIR] "
+        "[--require-reached]\n",
         e.what());
     return 2;
   }
@@ -191,5 +198,5 @@ int main(int argc, char** argv) {
   }
   std::printf("bc_evaluate: %d / %d episodes reached the target (%s); %s/bc_evaluation.csv\n",
               total_reached, total, expert ? "scripted expert" : model.c_str(), out.c_str());
-  return expert && total_reached < total ? 1 : 0;
+  return (expert || require_reached) && total_reached < total ? 1 : 0;
 }
