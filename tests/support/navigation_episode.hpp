@@ -93,7 +93,7 @@ class ScriptedExpert {
           s.heading_gain = 0.35;
           s.max_aim_off_target = 16.0 * EIGEN_PI / 180.0;  // the target stays in view
           s.aim_limit_opens_within = 0.25;                 // ... unless the chair is close
-          s.pass_side = side_for(scene);                   // a side the first image explains
+          s.pass_side = side_for(scene);                   // every chair on its left
           return s;
         }()) {}
 
