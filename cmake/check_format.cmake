@@ -1,12 +1,14 @@
 # clang-format check (DESIGN.md convention 19), script mode:
 #   cmake -DSOURCE_DIR=<repo root> [-DCLANG_FORMAT=<exe>] [-DFIX=ON] -P cmake/check_format.cmake
-# Checks every *.hpp/*.cpp under include/ tests/ benchmarks/ examples/ that git knows of (tracked,
+# Checks every *.hpp/*.cpp/*.h under include/ tests/ benchmarks/ examples/ that git knows of (tracked,
 # or untracked but not ignored); outside a git checkout it globs those folders instead.
 # With FIX=ON it rewrites the files in place. A missing clang-format is an error, not a skip.
 if(NOT SOURCE_DIR)
   get_filename_component(SOURCE_DIR "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 endif()
 set(_dirs include tests benchmarks examples)
+# C++ only: clang-format formats any file it is given as C++ (it once mangled a shell script).
+set(_extensions "hpp|cpp|h")
 
 # --- clang-format --------------------------------------------------------------------------------
 if(NOT CLANG_FORMAT)
@@ -36,7 +38,7 @@ if(_git AND EXISTS "${SOURCE_DIR}/.git")
     string(REPLACE "\n" ";" _candidates "${_git_out}")
     foreach(_f IN LISTS _candidates)
       # ls-files --cached still lists files deleted from the work tree.
-      if(_f MATCHES "\\.(hpp|cpp)$" AND EXISTS "${SOURCE_DIR}/${_f}")
+      if(_f MATCHES "\\.(${_extensions})$" AND EXISTS "${SOURCE_DIR}/${_f}")
         list(APPEND _files "${_f}")
       endif()
     endforeach()
@@ -50,7 +52,7 @@ endif()
 if(NOT _git)
   foreach(_d IN LISTS _dirs)
     file(GLOB_RECURSE _found RELATIVE "${SOURCE_DIR}"
-         "${SOURCE_DIR}/${_d}/*.hpp" "${SOURCE_DIR}/${_d}/*.cpp")
+         "${SOURCE_DIR}/${_d}/*.hpp" "${SOURCE_DIR}/${_d}/*.cpp" "${SOURCE_DIR}/${_d}/*.h")
     list(APPEND _files ${_found})
   endforeach()
 endif()

@@ -1,39 +1,81 @@
-#!/ usr / bin / env bash
-#The main demo(release preset) : the humanoid walks in MuJoCo.The closed loop of thesis figure
-# 6.1(NMPC->interpolation->Ceres IK->MuJoCo, CoM feedback, ZMP from the ankle sensors)
-#runs the four test tasks of thesis §9.2 against a target object(examples / walking_simulation
-#-- video) : straight 2 m, curved walk to a target on the left, a chair on the way, and the
-#environmental scan(target behind the robot).Then the six HRP - 2 pattern scenarios of §9.1
-#(examples / walking_scenarios) and the walking QP sequence(examples / qp_walking_sequence).
-#Extra arguments go to walking_simulation, e.g.task names or --no - plot.
-#bash scripts / demo.sh[straight | curved | obstacle | scan...][--no - plot]
-set - euo pipefail cd "$(dirname " $ { BASH_SOURCE[0] }
-")/.." root =
-    "$(pwd)"
+#!/usr/bin/env bash
+# The README's demo (release preset): the humanoid walks in MuJoCo. The closed loop of thesis
+# figure 6.1 (NMPC -> interpolation -> Ceres IK -> MuJoCo, CoM feedback, ZMP from the ankle
+# sensors) runs the four test tasks of thesis §9.2 against a target object (straight 2 m, a
+# curved walk to a target on the left, a chair on the way, the environmental scan with the
+# target behind the robot) and films them; then the six HRP-2 pattern scenarios of §9.1 and the
+# walking QP sequence of §2.2.
+#
+#   bash scripts/demo.sh [--quick] [--out DIR] [TASK...] [walking_simulation options]
+#
+#   --quick    a short check of the whole chain (about a minute once built): the straight task
+#              shortened to 0.2 m, no video, plots on; one pattern scenario. The ctest
+#              "readme_demo" runs it.
+#   --out DIR  where the results go (default build/release/example_output, or .../demo_quick)
+#   TASK...    straight curved obstacle scan (default: all four); other arguments go to
+#              build/release/examples/walking_simulation (see its --help), e.g. --no-plot.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+root="$(pwd)"
 
-    bash scripts /
-    setup.sh cmake-- preset release cmake-- build-- preset release-- target walking_simulation
-        walking_scenarios qp_walking_sequence
+quick=0
+out=""
+sim_args=()
+while [ "$#" -gt 0 ]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --out)
+      if [ "$#" -lt 2 ]; then
+        echo "demo: --out needs a folder" >&2
+        exit 2
+      fi
+      out="$2"
+      shift
+      ;;
+    -h | --help)
+      sed -n '2,16p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      exit 0
+      ;;
+    *) sim_args+=("$1") ;;
+  esac
+  shift
+done
 
-            out = "${root}/build/release/example_output" sim =
-        "${out}/simulation" mkdir -
-            p "${sim}" echo
-              "demo: running build/release/examples/walking_simulation --video --out ${sim} $*"
-              "${root}/build/release/examples/walking_simulation" --video-- out
-            "${sim}"
-            "$@" echo
-            "demo: running build/release/examples/walking_scenarios all --out ${out}"
-            "${root}/build/release/examples/walking_scenarios" all-- out
-            "${out}" echo
-            "demo: running build/release/examples/qp_walking_sequence --quiet (in ${out})"(
-                cd "${out}" && "${root}/build/release/examples/qp_walking_sequence" --quiet)
+bash scripts/setup.sh
+cmake --preset release
+cmake --build --preset release --target walking_simulation walking_scenarios qp_walking_sequence
 
-                echo "demo: the walk in MuJoCo (CSV, PNG, MP4) is in ${sim}:" ls -
-            1 "${sim}" |
-        grep - v '_frames$' echo
-            "demo: per task: ${sim}/<task>.png (path, desired vs measured ZMP, velocity "
-            "histograms)," echo
-            "      ${sim}/<task>_frames.png (frame strip), ${sim}/<task>.mp4 (video, 8x real "
-            "time)," echo
-            "      ${sim}/simulation_summary.csv (reached, distance, ZMP statistics per task)" echo
-            "demo: the pattern generator's plots are ${out}/*.png"
+bin="${root}/build/release/examples"
+if [ -z "${out}" ]; then
+  out="${root}/build/release/example_output"
+  [ "${quick}" -eq 1 ] && out="${out}/demo_quick"
+fi
+mkdir -p "${out}"
+out="$(cd "${out}" && pwd)"
+sim="${out}/simulation"
+mkdir -p "${sim}"
+export EGL_PLATFORM="${EGL_PLATFORM:-surfaceless}"
+
+start=${SECONDS}
+if [ "${quick}" -eq 1 ]; then
+  echo "demo (quick): walking_simulation straight --scale 0.1 --out ${sim} ${sim_args[*]}"
+  "${bin}/walking_simulation" straight --scale 0.1 --out "${sim}" "${sim_args[@]}"
+  echo "demo (quick): walking_scenarios straight --out ${out}"
+  "${bin}/walking_scenarios" straight --out "${out}"
+else
+  echo "demo: walking_simulation --video --out ${sim} ${sim_args[*]}"
+  "${bin}/walking_simulation" --video --out "${sim}" "${sim_args[@]}"
+  echo "demo: walking_scenarios all --out ${out}"
+  "${bin}/walking_scenarios" all --out "${out}"
+  echo "demo: qp_walking_sequence --quiet (in ${out})"
+  (cd "${out}" && "${bin}/qp_walking_sequence" --quiet)
+fi
+
+echo "demo: done in $((SECONDS - start)) s. The walk in MuJoCo is in ${sim}:"
+find "${sim}" -maxdepth 1 -type f -printf '  %f\n' | sort
+echo "demo: per task: ${sim}/<task>.png (path, desired vs measured ZMP, velocity histograms),"
+echo "      ${sim}/<task>.csv (one row per 10 ms), ${sim}/simulation_summary.csv (per task),"
+if [ "${quick}" -eq 0 ]; then
+  echo "      ${sim}/<task>_frames.png (frame strip), ${sim}/<task>.mp4 (video)"
+fi
+echo "demo: the pattern generator's plots are ${out}/*.png"

@@ -9,6 +9,7 @@ packages=(
   libtinyxml2-dev libmujoco-dev libceres-dev liborocos-kdl-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri zlib1g-dev libopencv-dev libopencv-contrib-dev
   libtorch-dev python3-torch
+  libcli11-dev shellcheck
   ffmpeg tmux clang-format python3-numpy python3-matplotlib
 )
 
