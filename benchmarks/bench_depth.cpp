@@ -1,7 +1,7 @@
 // Google Benchmark timings of the depth pipeline of thesis §3.1 (walkgen::StereoDepth) against
 // the bare OpenCV calls it makes, in the same binary, on one 320 × 240 colour pair (Middlebury
-// Aloe resized, from WALKGEN_DATA_DIR), with the thesis's N 13, D 32, λ 1e4, σ 1 (§10.2: 7.4 ms
-// on an i7-7700HQ).
+// Aloe resized, from WALKGEN_TEST_DATA_DIR), with the thesis's N 13, D 32, λ 1e4, σ 1 (§10.2: 7.4
+// ms on an i7-7700HQ).
 //
 //   build/opencv/benchmarks/bench_depth --benchmark_repetitions=10
 //       --benchmark_report_aggregates_only=true   (one command line)
@@ -30,7 +30,7 @@ struct Pair {
 
 const Pair& aloe_320x240() {
   static const Pair pair = [] {
-    const std::string dir = std::string(WALKGEN_DATA_DIR) + "/opencv_aloe_middlebury2006";
+    const std::string dir = std::string(WALKGEN_TEST_DATA_DIR) + "/opencv_aloe_middlebury2006";
     Pair p;
     try {
       cv::resize(walkgen::read_image(dir + "/aloeL.jpg", cv::IMREAD_COLOR), p.left,
@@ -38,7 +38,7 @@ const Pair& aloe_320x240() {
       cv::resize(walkgen::read_image(dir + "/aloeR.jpg", cv::IMREAD_COLOR), p.right,
                  cv::Size(320, 240), 0, 0, cv::INTER_AREA);
     } catch (const walkgen::invalid_argument& e) {
-      std::fprintf(stderr, "bench_depth: %s (set -DWALKGEN_DATA_DIR)\n", e.what());
+      std::fprintf(stderr, "bench_depth: %s (set -DWALKGEN_TEST_DATA_DIR)\n", e.what());
       std::exit(1);
     }
     return p;

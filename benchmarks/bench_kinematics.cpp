@@ -42,6 +42,7 @@ struct WalkSolution {
   std::vector<Eigen::VectorXd> q;
   std::vector<Eigen::Vector3d> base_position;
   std::vector<Eigen::Matrix3d> base_rotation;
+  int failures = 0;  ///< samples whose IK did not converge (the previous solution is kept)
 };
 const WalkSolution& walk_solution() {
   static const WalkSolution solution = [] {
@@ -49,7 +50,7 @@ const WalkSolution& walk_solution() {
     HumanoidIk ik(tree());
     walkgen_test::start_walk(ik, walk().front());
     for (const auto& sample : walk()) {
-      ik.solve(walkgen::ik_target(sample));
+      s.failures += ik.solve(walkgen::ik_target(sample)).status != walkgen::IkStatus::converged;
       s.q.push_back(ik.q());
       s.base_position.push_back(ik.base_position_W());
       s.base_rotation.push_back(ik.base_rotation_W());
@@ -125,7 +126,9 @@ void BM_IkWarmStartedPerSample(benchmark::State& state) {
     if (k == 0) {  // start over from the converged first sample
       state.PauseTiming();
       ik.set_initial_guess(solution.base_position[0], solution.base_rotation[0], solution.q[0]);
-      ik.solve(walkgen::ik_target(samples[0]));
+      if (ik.solve(walkgen::ik_target(samples[0])).status != walkgen::IkStatus::converged) {
+        state.SkipWithError("the first sample did not converge");
+      }
       k = 1;
       state.ResumeTiming();
     }
@@ -250,6 +253,7 @@ void BM_KdlLegIkPerSample(benchmark::State& state) {
   const double kdl_median = median(times);
   state.counters["median_us"] = kdl_median;
   state.counters["failures"] = failures;
+  state.counters["reference_failures"] = solution.failures;  // of the whole-body reference IK
   if (walkgen_ik_median_us > 0.0) {
     state.counters["ratio_walkgen_over_kdl"] = walkgen_ik_median_us / kdl_median;
   }

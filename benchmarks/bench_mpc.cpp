@@ -1,4 +1,4 @@
-// Google Benchmark timings of the NMPC walking generator (DESIGN.md convention 16).
+// Google Benchmark timings of the NMPC walking generator (docs/design.md convention 16).
 //
 //   build/release/benchmarks/bench_mpc --benchmark_repetitions=10
 //       --benchmark_report_aggregates_only=true   (one command line; portable x86-64 build)
@@ -41,7 +41,9 @@ void BM_Tick(benchmark::State& state, const char* scenario) {
   walkgen::WalkingMpc<double, N> mpc(s);
   long changes = 0, ticks = 0;
   for (auto _ : state) {
-    mpc.set_command(sc.command(int(ticks % 200)));
+    if (mpc.set_command(sc.command(int(ticks % 200))) != walkgen::CommandStatus::accepted) {
+      state.SkipWithError("command rejected");
+    }
     const auto& r = mpc.solve();
     if (r.status != walkgen::MpcStatus::solved) state.SkipWithError("QP failed");
     changes += r.qp_iterations;
@@ -71,10 +73,16 @@ struct CapturedQp {
 template <int N>
 void BM_QpOfTick(benchmark::State& state) {
   walkgen::WalkingMpc<double, N> mpc(settings(N));
-  mpc.set_command({0.1, 0.0, 0.0});
+  if (mpc.set_command({0.1, 0.0, 0.0}) != walkgen::CommandStatus::accepted) {
+    state.SkipWithError("command rejected");
+    return;
+  }
   std::vector<CapturedQp> qps;
   for (int k = 0; k < 200; ++k) {
-    mpc.solve();
+    if (mpc.solve().status != walkgen::MpcStatus::solved) {
+      state.SkipWithError("QP failed while capturing");
+      return;
+    }
     qps.push_back(
         {mpc.qp_H(), mpc.qp_g(), mpc.qp_lb(), mpc.qp_ub(), mpc.qp_l(), mpc.qp_u(), mpc.qp_A()});
     mpc.advance();
@@ -94,12 +102,17 @@ void BM_Interpolate(benchmark::State& state) {
   walkgen::WalkingMpc<double, 16> mpc(s);
   walkgen::WalkingInterpolator<double> interp(s);
   std::vector<walkgen::TrajectorySample<double>> out(std::size_t(interp.samples_per_tick()));
-  mpc.set_command({0.1, 0.0, 0.0});
-  for (int k = 0; k < 13; ++k) {  // mid-swing
-    mpc.solve();
-    mpc.advance();
+  if (mpc.set_command({0.1, 0.0, 0.0}) != walkgen::CommandStatus::accepted) {
+    state.SkipWithError("command rejected");
+    return;
   }
-  mpc.solve();
+  for (int k = 0; k <= 13; ++k) {  // mid-swing: 13 ticks walked, the 14th solved
+    if (mpc.solve().status != walkgen::MpcStatus::solved) {
+      state.SkipWithError("QP failed");
+      return;
+    }
+    if (k < 13) mpc.advance();
+  }
   for (auto _ : state) {
     interp.interpolate(mpc, out.data());
     benchmark::DoNotOptimize(out.data());

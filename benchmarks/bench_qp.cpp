@@ -1,4 +1,4 @@
-// Google Benchmark timings of walkgen::DenseQp (DESIGN.md convention 16).
+// Google Benchmark timings of walkgen::DenseQp (docs/design.md convention 16).
 //
 //   build/release/benchmarks/bench_qp --benchmark_repetitions=10
 //       --benchmark_report_aggregates_only=true   (one command line)
@@ -88,7 +88,10 @@ void BM_RandomWarmUpdate(benchmark::State& state) {
   }
   DenseQp<double> qp(n, 2 * n);
   qp.init(p.H, p.g, p.A, p.lb, p.ub, p.l, p.u);
-  qp.solve();
+  if (qp.solve().status != QpStatus::solved) {
+    state.SkipWithError("the unperturbed QP is not solved");
+    return;
+  }
   SolveStats stats;
   std::size_t k = 0;
   for (auto _ : state) {
@@ -172,7 +175,7 @@ void BM_WalkingWarmUpdate(benchmark::State& state) {
     if (variant == 8) {
       const auto& w = data.ticks[tick];
       qp.init(w.H, w.g, w.A, w.lb, w.ub);
-      qp.solve();
+      if (qp.solve().status != QpStatus::solved) state.SkipWithError("the tick's QP not solved");
       variant = 0;
     }
     const auto& v = data.feedback[tick][variant];

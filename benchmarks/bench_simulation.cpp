@@ -29,7 +29,9 @@ void BM_ClosedLoopTick(benchmark::State& state) {
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   walkgen_test::SimLoop loop(settings, robot, ik);
   if (loop.start().status != walkgen::LoopStatus::ok) state.SkipWithError("start failed");
-  loop.set_command({0.03, 0.0, 0.05});
+  if (loop.set_command({0.03, 0.0, 0.05}) != walkgen::CommandStatus::accepted) {
+    state.SkipWithError("command rejected");
+  }
   long ticks = 0;
   for (auto _ : state) {
     if (loop.tick().status != walkgen::LoopStatus::ok) {
@@ -39,7 +41,7 @@ void BM_ClosedLoopTick(benchmark::State& state) {
     if (++ticks % 1500 == 0) {  // 10 minutes walked: start again, untimed
       state.PauseTiming();
       robot.reset();
-      loop.start();
+      if (loop.start().status != walkgen::LoopStatus::ok) state.SkipWithError("start failed");
       state.ResumeTiming();
     }
   }
@@ -52,7 +54,11 @@ void BM_PhysicsOnly(benchmark::State& state) {
   walkgen::MujocoRobot robot;
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   for (auto _ : state) {
-    for (int k = 0; k < 40; ++k) robot.step(settings.command_period);
+    for (int k = 0; k < 40; ++k) {
+      if (robot.step(settings.command_period) != walkgen::RobotStatus::ok) {
+        state.SkipWithError("the robot stopped");
+      }
+    }
     benchmark::DoNotOptimize(robot.output().q.data());
   }
   report(state, settings.t);
@@ -66,12 +72,15 @@ void BM_ControllerOnly(benchmark::State& state) {
   walkgen::WalkingInterpolator<double> interp(settings);
   std::vector<walkgen::TrajectorySample<double>> samples(std::size_t(interp.samples_per_tick()));
   walkgen_test::HumanoidIk ik(tree());
-  mpc.set_command({0.03, 0.0, 0.05});
-  mpc.solve();
+  if (mpc.set_command({0.03, 0.0, 0.05}) != walkgen::CommandStatus::accepted ||
+      mpc.solve().status != walkgen::MpcStatus::solved) {
+    state.SkipWithError("the first tick failed");
+    return;
+  }
   interp.interpolate(mpc, samples.data());
   walkgen_test::start_walk(ik, samples.front());
   for (auto _ : state) {
-    mpc.solve();
+    if (mpc.solve().status != walkgen::MpcStatus::solved) state.SkipWithError("QP failed");
     interp.interpolate(mpc, samples.data());
     for (const auto& s : samples) benchmark::DoNotOptimize(ik.solve(walkgen::ik_target(s)));
     mpc.advance();

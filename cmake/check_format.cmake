@@ -1,4 +1,4 @@
-# clang-format check (DESIGN.md convention 19), script mode:
+# clang-format check (docs/design.md convention 19), script mode:
 #   cmake -DSOURCE_DIR=<repo root> [-DCLANG_FORMAT=<exe>] [-DFIX=ON] -P cmake/check_format.cmake
 # Checks every *.hpp/*.cpp/*.h under include/ tests/ benchmarks/ examples/ that git knows of (tracked,
 # or untracked but not ignored); outside a git checkout it globs those folders instead.

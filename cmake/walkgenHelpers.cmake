@@ -126,11 +126,22 @@ function(walkgen_add_example)
     message(FATAL_ERROR "walkgen_add_example(${_arg_NAME}): SOURCES is required")
   endif()
 
+  if(NOT TARGET CLI11::CLI11)
+    find_package(CLI11 CONFIG QUIET)
+    if(NOT CLI11_FOUND)
+      message(FATAL_ERROR "walkgen: the examples parse their command lines with CLI11, which was "
+                          "not found. Install the Debian package libcli11-dev (bash "
+                          "scripts/setup.sh does), or configure with -DWALKGEN_BUILD_EXAMPLES=OFF.")
+    endif()
+  endif()
   add_executable(${_arg_NAME} ${_arg_SOURCES})
-  target_link_libraries(${_arg_NAME} PRIVATE walkgen::walkgen ${_arg_LIBS})
-  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
+  target_link_libraries(${_arg_NAME} PRIVATE walkgen::walkgen CLI11::CLI11 ${_arg_LIBS})
+  # "support/..." from tests/, "common/cli.hpp" (the command-line conventions) from examples/.
+  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests"
+                                                  "${PROJECT_SOURCE_DIR}/examples")
   target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   walkgen_target_warnings(${_arg_NAME})
+  set_property(GLOBAL APPEND PROPERTY WALKGEN_EXAMPLE_TARGETS ${_arg_NAME})
 
   set(_out "${CMAKE_BINARY_DIR}/example_output")
   file(MAKE_DIRECTORY "${_out}")
@@ -143,6 +154,23 @@ function(walkgen_add_example)
              WORKING_DIRECTORY "${_out}")
     set_tests_properties(example_${_arg_NAME}_${_case} PROPERTIES LABELS example TIMEOUT 300)
   endforeach()
+endfunction()
+
+# The ctest "examples_help" (label "example"): every program added by walkgen_add_example so far
+# answers --help with exit 0 and a usage text naming each of its options, and rejects an unknown
+# option with a non-zero exit and one line on stderr (tests/examples_help.cmake). Call it once,
+# after the last walkgen_add_example.
+function(walkgen_add_examples_help_test)
+  get_property(_targets GLOBAL PROPERTY WALKGEN_EXAMPLE_TARGETS)
+  set(_files "")
+  foreach(_target IN LISTS _targets)
+    list(APPEND _files "$<TARGET_FILE:${_target}>")
+  endforeach()
+  string(REPLACE ";" "|" _files "${_files}")
+  add_test(NAME examples_help
+           COMMAND "${CMAKE_COMMAND}" "-DPROGRAMS=${_files}"
+                   -P "${PROJECT_SOURCE_DIR}/tests/examples_help.cmake")
+  set_tests_properties(examples_help PROPERTIES LABELS example TIMEOUT 120)
 endfunction()
 
 # A ctest that passes only if compiling SOURCE fails AND the compiler output matches REGEX

@@ -17,6 +17,6 @@ endif()
 # The shared data set of the OpenCV tests, benchmark and examples (OpenCV's stereo chessboards,
 # Middlebury Aloe and Cones; each folder has a SOURCE.txt with its origin and licence): the copy in
 # tests/data (3.2 MB), so that a fresh clone tests without anything beside it.
-set(WALKGEN_DATA_DIR "${CMAKE_CURRENT_LIST_DIR}/../tests/data"
+set(WALKGEN_TEST_DATA_DIR "${CMAKE_CURRENT_LIST_DIR}/../tests/data"
     CACHE PATH "walkgen's stereo test data: chessboards, Middlebury Aloe and Cones")
-get_filename_component(WALKGEN_DATA_DIR "${WALKGEN_DATA_DIR}" ABSOLUTE)
+get_filename_component(WALKGEN_TEST_DATA_DIR "${WALKGEN_TEST_DATA_DIR}" ABSOLUTE)

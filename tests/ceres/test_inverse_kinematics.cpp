@@ -11,6 +11,7 @@
 
 #include "support/humanoid_ik.hpp"
 #include "support/kinematics.hpp"
+#include "walkgen/core/math.hpp"
 
 namespace {
 
@@ -43,7 +44,7 @@ IkTarget random_reachable_target(std::mt19937& rng) {
   for (;;) {
     Eigen::VectorXd q = walkgen_test::random_configuration(t, rng);
     const Eigen::Vector3d tilt_axis(u(rng), u(rng), 0.0);
-    const Eigen::Matrix3d R = (Eigen::AngleAxisd(M_PI * u(rng), Eigen::Vector3d::UnitZ()) *
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(walkgen::kPi * u(rng), Eigen::Vector3d::UnitZ()) *
                                Eigen::AngleAxisd(0.3 * u(rng), tilt_axis.normalized()))
                                   .toRotationMatrix();
     const Eigen::Vector3d p(u(rng), u(rng), 0.5);
@@ -216,7 +217,8 @@ void check_analytic_jacobian() {
   for (int i = 0; i < 20; ++i) {
     const IkTarget target = random_reachable_target(rng);
     const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(M_PI * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
+        Eigen::AngleAxisd(walkgen::kPi * u(rng),
+                          Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized())
             .toRotationMatrix();
     const Eigen::VectorXd q = walkgen_test::random_configuration(tree(), rng);
     for (auto* ik : {&analytic, &automatic}) ik->set_initial_guess(Eigen::Vector3d::Zero(), R, q);

@@ -1,5 +1,5 @@
 // Must not compile: a negative compile-time size is refused with a "walkgen: ..." sentence
-// (DESIGN.md convention 4). Built only by the compile_fail_qp_size ctest.
+// (docs/design.md convention 4). Built only by the compile_fail_qp_size ctest.
 
 #include "walkgen/qp/dense_qp.hpp"
 

@@ -7,14 +7,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "walkgen/core/math.hpp"
+
 namespace {
 
 using walkgen::GoToTarget;
 using walkgen::GoToTargetCommand;
+using walkgen::kPi;
 using walkgen::PlanarPose;
 
 const Eigen::Vector3d kMax(0.034, 0.0045, 0.075);  // Heicub's max_command
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(GoToTarget, WalksStraightAtATargetAheadAndStopsWithinTheStopDistance) {
   GoToTarget steer({2.0, 0.0}, kMax);

@@ -1,4 +1,4 @@
-// Tests of walkgen's boundary checks (DESIGN.md convention 10, tier b).
+// Tests of walkgen's boundary checks (docs/design.md convention 10, tier b).
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Proves that forward kinematics, the centre of mass and both Jacobians never touch the heap
-// after the tree and its workspace are made (DESIGN.md convention 6), including with an
+// after the tree and its workspace are made (docs/design.md convention 6), including with an
 // expression for q and a Jacobian that is a block of a larger matrix.
 
 #include <gtest/gtest.h>

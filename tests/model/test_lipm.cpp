@@ -1,4 +1,4 @@
-// Tests of the LIPM preview matrices (thesis eq. 2.25–2.42 with DESIGN.md's errata) against
+// Tests of the LIPM preview matrices (thesis eq. 2.25–2.42 with docs/design.md's errata) against
 // step-by-step simulation of eq. 2.28, which shares no code with the closed forms.
 
 #include <gtest/gtest.h>
@@ -57,7 +57,7 @@ TEST(Lipm, PreviewMatchesSimulationDynamicHorizon) {
 }
 
 TEST(Lipm, ErrataEntries) {
-  // DESIGN.md §5: P_pu(i, j) = (1 + 3d + 3d²) T³/6, P_vu(i, j) = (1 + 2d) T²/2, d = i − j.
+  // docs/design.md §5: P_pu(i, j) = (1 + 3d + 3d²) T³/6, P_vu(i, j) = (1 + 2d) T²/2, d = i − j.
   const double T = 0.2;
   const LipmPreview<double> P(T, 0.8, 9.81, 5);
   EXPECT_NEAR(P.P_pu(4, 1), (1 + 9 + 27) * T * T * T / 6, 1e-15);

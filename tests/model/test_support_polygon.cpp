@@ -8,6 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "walkgen/core/math.hpp"
+
 namespace {
 
 using Polygon = Eigen::Matrix<double, Eigen::Dynamic, 2>;
@@ -46,7 +48,7 @@ TEST(SupportPolygon, RejectsNonConvexAndDegeneratePolygons) {
 
   Polygon star(5, 2);  // a pentagram: turns one way only, but winds twice
   for (int i = 0; i < 5; ++i) {
-    const double a = 2 * 3.141592653589793 * (2 * i) / 5;
+    const double a = 2 * walkgen::kPi * (2 * i) / 5;
     star.row(i) << std::cos(a), std::sin(a);
   }
   EXPECT_STREQ(walkgen::convex_polygon_problem(star),

@@ -100,7 +100,10 @@ class Scenario : public ::testing::TestWithParam<std::string> {};
 TEST_P(Scenario, EveryQpSolvesAndTheZmpStaysInTheSupportPolygon) {
   const ScenarioRun& run = run_of(GetParam());
   ASSERT_EQ(run.results.size(), 200u);
+  ASSERT_EQ(run.commands.size(), 200u);
   for (std::size_t k = 0; k < run.results.size(); ++k) {
+    ASSERT_EQ(run.commands[k], walkgen::CommandStatus::accepted)
+        << "tick " << k << ": " << walkgen::to_string(run.commands[k]);
     ASSERT_EQ(run.results[k].status, walkgen::MpcStatus::solved)
         << "tick " << k << ": " << walkgen::to_string(run.results[k].qp_status);
   }
@@ -342,7 +345,7 @@ TYPED_TEST(Jacobian, MatchesFiniteDifferences) {
   s.n = TypeParam::N == Eigen::Dynamic ? 24 : TypeParam::N;
   s.obstacles.push_back({1.0, 0.6, 0.3, 0.2});
   walkgen::WalkingMpc<double, TypeParam::N, TypeParam::FootEdges, TypeParam::HullEdges> mpc(s);
-  mpc.set_command({0.1, 0.02, 0.15});
+  ASSERT_EQ(mpc.set_command({0.1, 0.02, 0.15}), walkgen::CommandStatus::accepted);
   for (int k = 0; k < 13; ++k) {  // mid-step, turning: every block is nonlinear here
     ASSERT_EQ(mpc.solve().status, walkgen::MpcStatus::solved);
     mpc.advance();
@@ -382,7 +385,7 @@ TYPED_TEST(Jacobian, MatchesFiniteDifferences) {
 // --- Failures and bad input --------------------------------------------------------------------
 TEST(WalkingMpc, AFailedQpIsNeverAppliedAndThePlanIsTheShiftedPrevious) {
   walkgen::WalkingMpc<double, 16> mpc(hrp2(), /*obstacle_capacity=*/1);
-  mpc.set_command({0.1, 0.0, 0.0});
+  ASSERT_EQ(mpc.set_command({0.1, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   for (int k = 0; k < 5; ++k) {
     ASSERT_EQ(mpc.solve().status, walkgen::MpcStatus::solved);
     mpc.advance();
@@ -427,7 +430,7 @@ TEST(WalkingMpc, StateFeedbackIsCheckedAndUsed) {
   st = mpc.state();
   st.com_x[0] += 0.02;
   mpc.set_state(st);
-  mpc.solve();
+  ASSERT_EQ(mpc.solve().status, walkgen::MpcStatus::solved);
   mpc.advance();
   EXPECT_GT(mpc.state().com_x[0], 0.019);
 }

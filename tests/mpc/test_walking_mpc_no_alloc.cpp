@@ -1,5 +1,5 @@
 // Proves that a generator tick (set_command, solve, interpolate, advance, set_obstacles within the
-// capacity, set_state) never touches the heap after construction (DESIGN.md convention 6), for
+// capacity, set_state) never touches the heap after construction (docs/design.md convention 6), for
 // fixed and dynamic sizes, with obstacles, through correction iterations and a failed QP.
 
 #include <gtest/gtest.h>
@@ -21,10 +21,11 @@ void expect_ticks_do_not_allocate(const walkgen::WalkingSettings<double>& s) {
   std::vector<walkgen::TrajectorySample<double>> buffer(std::size_t(interp.samples_per_tick()));
   const std::vector<walkgen::CircleObstacle<double>> none, one{{1.6, 1.0, 1.0, 0.4}},
       blocking{{0.0, 0.0, 2.0, 0.5}};
-  int solved = 0, failed = 0, corrected = 0;
+  int solved = 0, failed = 0, corrected = 0, rejected = 0;
   const long news = count_allocations([&] {
     for (int k = 0; k < 60; ++k) {
-      mpc.set_command({0.1, 0.0, k > 30 ? 0.1 : 0.0});
+      rejected +=
+          mpc.set_command({0.1, 0.0, k > 30 ? 0.1 : 0.0}) != walkgen::CommandStatus::accepted;
       if (k == 10) mpc.set_obstacles(one);
       if (k == 40) mpc.set_obstacles(blocking);  // infeasible: the safe plan is kept
       if (k == 41) mpc.set_obstacles(none);
@@ -41,6 +42,7 @@ void expect_ticks_do_not_allocate(const walkgen::WalkingSettings<double>& s) {
     }
   });
   EXPECT_EQ(news, 0);
+  EXPECT_EQ(rejected, 0);
   EXPECT_GE(solved, 58);
   EXPECT_GE(failed, 1);     // the blocking obstacle was really exercised
   EXPECT_GE(corrected, 1);  // and so were the correction iterations

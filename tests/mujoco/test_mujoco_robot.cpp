@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "walkgen/core/math.hpp"
+
 namespace {
 
 using walkgen::MujocoRobot;
@@ -192,9 +194,9 @@ TEST(MujocoRobot, RejectsNonFiniteCommandsAndThrowsOnWrongSizes) {
   ASSERT_EQ(reference.step(0.5), RobotStatus::ok);
   EXPECT_TRUE(robot.output().q.allFinite());
   EXPECT_EQ(robot.output().q, reference.output().q);  // the bad commands changed nothing
-  EXPECT_THROW(robot.set_joint_targets(Eigen::VectorXd::Zero(14)), walkgen::invalid_argument);
-  EXPECT_THROW(robot.step(0.0), walkgen::invalid_argument);
-  EXPECT_THROW(robot.step(std::nan("")), walkgen::invalid_argument);
+  EXPECT_THROW((void)robot.set_joint_targets(Eigen::VectorXd::Zero(14)), walkgen::invalid_argument);
+  EXPECT_THROW((void)robot.step(0.0), walkgen::invalid_argument);
+  EXPECT_THROW((void)robot.step(std::nan("")), walkgen::invalid_argument);
 }
 
 TEST(MujocoRobot, WrongNamesThrowNamingEveryMissingOne) {
@@ -254,7 +256,7 @@ TEST(MujocoRobot, RendersBothChestCamerasWithDepth) {
       ASSERT_GE(z, image->near_clip * 0.999);
       ASSERT_LE(z, image->far_clip * 1.001);
     }
-    EXPECT_NEAR(image->fovy, 45.0 * EIGEN_PI / 180.0, 1e-12);
+    EXPECT_NEAR(image->fovy, 45.0 * walkgen::kPi / 180.0, 1e-12);
     // A pinhole camera: the ray through a pixel's centre meets the floor at that pixel's depth
     // (along the optical axis, x of the camera frame). Checks the depth scale and the pose.
     const double focal = 0.5 * image->height / std::tan(0.5 * image->fovy);  // [px]
@@ -316,7 +318,7 @@ TEST(MujocoRobot, AddsSceneObjectsToTheWorldAndRendersAFreeView) {
   const std::size_t centre = (60u * 160u + 80u) * 3u;  // looking at the red box
   EXPECT_GT(int(view.rgb[centre]), 2 * int(view.rgb[centre + 1]));
   EXPECT_NEAR(view.depth[60u * 160u + 80u], 1.5 - 0.1, 0.05);  // its face, 0.1 m before the centre
-  EXPECT_THROW(robot.render_view({0, 0, 0}, 1.0, 0.0, 0.0, 4000, 10, view),
+  EXPECT_THROW((void)robot.render_view({0, 0, 0}, 1.0, 0.0, 0.0, 4000, 10, view),
                walkgen::invalid_argument);
 
   settings.objects = {box};

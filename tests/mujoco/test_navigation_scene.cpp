@@ -4,14 +4,20 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <set>
+
+#include "support/enum_strings.hpp"
+#include "walkgen/core/math.hpp"
 
 namespace {
 
 using walkgen::NavigationTask;
 
-double bearing_deg(const Eigen::Vector2d& p) { return std::atan2(p.y(), p.x()) * 180.0 / EIGEN_PI; }
+double bearing_deg(const Eigen::Vector2d& p) {
+  return std::atan2(p.y(), p.x()) * 180.0 / walkgen::kPi;
+}
 
 TEST(NavigationScene, EachTaskHasItsGeometryAndTheSameSeedGivesTheSameRoom) {
   for (std::uint32_t seed = 0; seed < 50; ++seed) {
@@ -53,6 +59,14 @@ TEST(NavigationScene, EachTaskHasItsGeometryAndTheSameSeedGivesTheSameRoom) {
   ASSERT_EQ(list.size(), 2u);
   EXPECT_EQ(list[1], NavigationTask::obstacle);
   EXPECT_THROW(walkgen::navigation_tasks_from_list("scan,,obstacle"), walkgen::invalid_argument);
+}
+
+TEST(NavigationScene, TaskNamesFollowTheToStringConvention) {
+  const auto all = walkgen::all_navigation_tasks();
+  ASSERT_EQ(all.size(), 6u);
+  walkgen_test::expect_enum_strings(
+      std::array<NavigationTask, 6>{all[0], all[1], all[2], all[3], all[4], all[5]});
+  for (NavigationTask t : all) EXPECT_EQ(walkgen::navigation_task_from_string(to_string(t)), t);
 }
 
 TEST(NavigationScene, ThePersonWalksBackAndForthAtItsSpeed) {

@@ -61,6 +61,7 @@ TEST_P(Section92Task, ReachesTheTargetWithoutFallingAndKeepsTheZmpInTheSupportPo
   EXPECT_LE(r.final_distance, walkgen_test::kReachDistance);
   EXPECT_TRUE(r.reached);
   EXPECT_GT(r.min_base_height, 0.9 * 0.5062);  // never near the fall threshold (80 %)
+  EXPECT_EQ(r.rejected_commands, 0);
   EXPECT_EQ(r.qp_failures, 0);
   EXPECT_EQ(r.ik_failures, 0);
   EXPECT_GE(r.inside_fraction(), 0.99);
@@ -166,7 +167,7 @@ TEST(WalkingLoop, FeedsTheMeasuredComBackEveryFeedbackPeriod) {
   settings.t_feedback = 2.0 * settings.t;  // every second tick
   walkgen_test::SimLoop loop(settings, robot, ik);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
-  loop.set_command({0.03, 0.0, 0.0});
+  ASSERT_EQ(loop.set_command({0.03, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   int fed = 0;
   double worst = 0.0;
   for (int k = 0; k < 100; ++k) {
@@ -203,7 +204,7 @@ TEST(WalkingLoop, StartMovesTheComOverTheSupportFootAndTheStateFollowsTheRobot) 
   EXPECT_NEAR(st.com_y[0], settings.com_y[0], 0.005);
   EXPECT_NEAR(st.swing_origin.y, settings.foot_y - settings.foot_distance, 0.005);
   EXPECT_NEAR(robot.output().time, 2.0, 0.02);  // the transfer time
-  loop.set_command({0.0, 0.0, 0.0});
+  ASSERT_EQ(loop.set_command({0.0, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   EXPECT_EQ(loop.tick().status, LoopStatus::ok);
 }
 
@@ -255,7 +256,7 @@ TEST(WalkingLoop, AFallIsReportedAndStopsTheLoop) {
   walkgen_test::HumanoidIk ik(tree());
   walkgen_test::SimLoop loop(walkgen::heicub_settings(), robot, ik);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
-  loop.set_command({0.03, 0.0, 0.0});
+  ASSERT_EQ(loop.set_command({0.03, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   for (int k = 0; k < 5; ++k) ASSERT_EQ(loop.tick().status, LoopStatus::ok);
   robot.data()->qvel[1] = 2.0;  // base velocity y [m/s]
   LoopStatus status = LoopStatus::ok;

@@ -82,10 +82,10 @@ TEST(DemonstrationRecorder, BadInputAndMalformedIndexesGiveClearErrors) {
       [&] { r.record(0.0, walkgen::CameraImage(), small, Eigen::Vector3d::Zero()); },
       {"left image"});
   std::ofstream(folder + "/index.txt", std::ios::app) << "rgb/x.png disparity/x.png ep 0.5 0.1\n";
-  walkgen_test::expect_invalid_argument([&] { walkgen::read_demonstration_index(folder); },
+  walkgen_test::expect_invalid_argument([&] { return walkgen::read_demonstration_index(folder); },
                                         {"index.txt:2", "v_x v_y omega"});
   walkgen_test::expect_invalid_argument(
-      [&] { walkgen::read_demonstration_index(folder + "/nowhere"); }, {"missing"});
+      [&] { return walkgen::read_demonstration_index(folder + "/nowhere"); }, {"missing"});
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 #include <vector>
+#include <walkgen/core/math.hpp>
 #include <walkgen/opencv/depth_obstacles.hpp>
 #include "support/expect_error.hpp"
 
@@ -18,7 +19,7 @@ struct Cylinder {
 };
 
 const walkgen::PinholeIntrinsics kCamera =
-    walkgen::pinhole_from_fovy(320, 240, 45.0 * M_PI / 180.0);
+    walkgen::pinhole_from_fovy(320, 240, 45.0 * walkgen::kPi / 180.0);
 
 Eigen::Isometry3d camera_pose(double pitch = 0.1) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 #include <walkgen/opencv/stereo_calibration.hpp>
@@ -124,16 +123,17 @@ TEST(StereoCalibration, MissingYamlKeyNamesFileAndKey) {
     fs << "image_width" << 640 << "image_height" << 480;
     fs << "K1" << cv::Mat::eye(3, 3, CV_64F) << "D1" << cv::Mat::zeros(1, 5, CV_64F);
   }
-  expect_invalid_argument([&] { walkgen::load_stereo_calibration(path); }, {path, "'K2'"});
+  expect_invalid_argument([&] { return walkgen::load_stereo_calibration(path); }, {path, "'K2'"});
   {
     cv::FileStorage fs(path, cv::FileStorage::WRITE);
     fs << "image_width" << 640 << "image_height" << 480;
     fs << "K1" << cv::Mat::eye(2, 2, CV_64F);
   }
-  expect_invalid_argument([&] { walkgen::load_stereo_calibration(path); },
+  expect_invalid_argument([&] { return walkgen::load_stereo_calibration(path); },
                           {path, "'K1'", "3x3", "2x2"});
   std::filesystem::remove(path);
-  expect_invalid_argument([&] { walkgen::load_stereo_calibration(path); }, {path, "missing"});
+  expect_invalid_argument([&] { return walkgen::load_stereo_calibration(path); },
+                          {path, "missing"});
 }
 
 TEST(StereoCalibration, BadInputGivesClearErrors) {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <vector>
+#include <walkgen/core/math.hpp>
 #include <walkgen/opencv/stereo_depth.hpp>
 
 #include "opencv/data_dir.hpp"
@@ -231,8 +231,9 @@ TEST(StereoDepth, RectifiesWithACalibration) {
 }
 
 TEST(StereoDepth, PinholeFromFovy) {
-  const walkgen::PinholeIntrinsics k = walkgen::pinhole_from_fovy(320, 240, 45.0 * M_PI / 180.0);
-  EXPECT_NEAR(k.fy, 120.0 / std::tan(22.5 * M_PI / 180.0), 1e-9);
+  const walkgen::PinholeIntrinsics k =
+      walkgen::pinhole_from_fovy(320, 240, 45.0 * walkgen::kPi / 180.0);
+  EXPECT_NEAR(k.fy, 120.0 / std::tan(22.5 * walkgen::kPi / 180.0), 1e-9);
   EXPECT_DOUBLE_EQ(k.fx, k.fy);
   EXPECT_DOUBLE_EQ(k.cx, 159.5);
   EXPECT_DOUBLE_EQ(k.cy, 119.5);

@@ -1,11 +1,10 @@
 // Proves that DenseQp's init(), update() and solve() never touch the heap after construction
-// (DESIGN.md convention 6). Two independent checks: Eigen's EIGEN_RUNTIME_NO_MALLOC guard (any
+// (docs/design.md convention 6). Two independent checks: Eigen's EIGEN_RUNTIME_NO_MALLOC guard (any
 // Eigen heap allocation aborts; this target keeps asserts on) and a counting operator new.
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-#include <atomic>
 #include <cstdlib>
 #include <new>
 #include <vector>

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "walkgen/core/math.hpp"
+
 namespace {
 
 using walkgen::ForceTorqueReading;
@@ -30,7 +32,7 @@ ForceTorqueReading reading(const Eigen::Vector3d& force, const Eigen::Vector3d& 
 TEST(MeasuredZmp, MatchesHandComputedDoubleSupport) {
   const std::array<ForceTorqueReading, 2> ft{
       {reading({2, -1, 100}, {0.5, -1, 0.1}, {0, 0.07, 0.03}, 0.0),
-       reading({0, 0, 300}, {0, -3, 0}, {0.1, -0.07, 0.03}, EIGEN_PI / 2)}};
+       reading({0, 0, 300}, {0, -3, 0}, {0.1, -0.07, 0.03}, walkgen::kPi / 2)}};
   const walkgen::MeasuredZmp zmp = measured_zmp(ft, 0.03);
   ASSERT_TRUE(zmp.valid);
   EXPECT_TRUE(zmp.in_contact[0] && zmp.in_contact[1]);
@@ -108,7 +110,7 @@ TEST(SupportPolygonMargin, IsTheDistanceToTheNearestEdgeOfTheSolesInContact) {
   zmp.zmp_W = Eigen::Vector3d(0.19, 0.02, 0.0);
   EXPECT_LT(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.0);
   // A sole turned 90 degrees: 0.1 m long in x, 0.2 m in y.
-  ft[0] = reading({0, 0, 100}, {0, 0, 0}, {0, 0, d}, EIGEN_PI / 2);
+  ft[0] = reading({0, 0, 100}, {0, 0, 0}, {0, 0, d}, walkgen::kPi / 2);
   zmp.in_contact = {{true, false}};
   zmp.zmp_W = Eigen::Vector3d(0.03, 0.0, 0.0);
   EXPECT_NEAR(walkgen::support_polygon_margin(zmp, ft, d, L, W), 0.02, 1e-12);

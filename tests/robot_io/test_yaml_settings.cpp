@@ -104,7 +104,7 @@ std::string error_of(Load&& load) {
 }
 
 std::string error_of_text(const std::string& text) {
-  return error_of([&] { walkgen::walking_settings_from_yaml(text); });
+  return error_of([&] { return walkgen::walking_settings_from_yaml(text); });
 }
 
 // Writes `text` to a scratch file and returns its path.
@@ -349,7 +349,7 @@ TEST(YamlSettings, MessagesGiveTheLine) {
             std::string::npos);
   const std::string path = write_temp("walkgen_bad_value.yaml", "n: 16\ncom_z: high\n");
   EXPECT_NE(error_of([&] {
-              walkgen::load_walking_settings(path);
+              return walkgen::load_walking_settings(path);
             }).find(path + ":2: key 'com_z': expected a number, got 'high'"),
             std::string::npos);
   std::remove(path.c_str());
@@ -386,13 +386,13 @@ TEST(YamlSettings, MalformedYamlAndMissingFilesNameThePath) {
   EXPECT_NE(what.find("yaml-cpp: error at line"), std::string::npos) << what;
 
   const std::string path = write_temp("walkgen_malformed.yaml", "n: 16\nt: {0.1\n");
-  what = error_of([&] { walkgen::load_walking_settings(path); });
+  what = error_of([&] { return walkgen::load_walking_settings(path); });
   EXPECT_NE(what.find(path + ": expected well-formed YAML"), std::string::npos) << what;
   EXPECT_NE(what.find("yaml-cpp: error at line"), std::string::npos) << what;
   std::remove(path.c_str());
 
   const std::string missing = kConfigs + "no_such_robot.yaml";
-  what = error_of([&] { walkgen::load_walking_settings(missing); });
+  what = error_of([&] { return walkgen::load_walking_settings(missing); });
   EXPECT_NE(what.find(missing + ": expected a readable YAML file"), std::string::npos) << what;
   EXPECT_NE(what.find("bad file"), std::string::npos) << what;
 }

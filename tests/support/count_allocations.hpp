@@ -1,7 +1,7 @@
 #pragma once
 // A counting replacement of operator new and count_allocations(f), for the no-allocation tests
-// (DESIGN.md convention 6). Include it in exactly one translation unit of a test binary that is
-// built with EIGEN_RUNTIME_NO_MALLOC (Eigen heap allocations then abort) and without NDEBUG.
+// (docs/design.md convention 6). Include it in exactly one translation unit of a test binary that
+// is built with EIGEN_RUNTIME_NO_MALLOC (Eigen heap allocations then abort) and without NDEBUG.
 
 #include <Eigen/Core>
 #include <atomic>

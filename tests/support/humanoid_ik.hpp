@@ -4,10 +4,12 @@
 // period.
 
 #include <Eigen/Core>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "walkgen/ceres/inverse_kinematics.hpp"
+#include "walkgen/core/data_dir.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
 #include "walkgen/robot_io/urdf.hpp"
@@ -19,8 +21,7 @@ constexpr int kHumanoidJoints = 15;
 using HumanoidIk = walkgen::CeresInverseKinematics<kHumanoidJoints>;
 
 inline walkgen::KinematicTree<double> humanoid_tree() {
-  return walkgen::kinematic_tree_from_urdf_file(std::string(WALKGEN_SOURCE_DIR) +
-                                                "/models/walkgen_humanoid.urdf");
+  return walkgen::kinematic_tree_from_urdf_file(walkgen::humanoid_urdf_path());
 }
 
 /// The MJCF keyframe "stand": hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad (soles flat).
@@ -56,6 +57,8 @@ void start_standing(Ik& ik, const Eigen::Vector3d& left_sole_W, double yaw = 0.0
 /// A Heicub walk (thesis Table 6.1: walkgen::heicub_settings() unchanged, com_z = 0.45 m, which
 /// the humanoid's standing CoM matches, plus `obstacles`) of `ticks` NMPC ticks, the command at
 /// tick k being command(k), interpolated at the command period.
+/// @throws std::runtime_error when a command is rejected or a QP fails (the walk would not be the
+///   one asked for).
 template <typename Command>
 std::vector<walkgen::TrajectorySample<double>> heicub_walk(
     const Command& command, int ticks,
@@ -67,8 +70,13 @@ std::vector<walkgen::TrajectorySample<double>> heicub_walk(
   std::vector<walkgen::TrajectorySample<double>> samples(
       std::size_t(ticks * interp.samples_per_tick()));
   for (int k = 0; k < ticks; ++k) {
-    mpc.set_command(command(k));
-    mpc.solve();
+    const walkgen::CommandStatus accepted = mpc.set_command(command(k));
+    const walkgen::MpcStatus solved = mpc.solve().status;
+    if (accepted != walkgen::CommandStatus::accepted || solved != walkgen::MpcStatus::solved) {
+      throw std::runtime_error("heicub_walk: tick " + std::to_string(k) + ": command " +
+                               walkgen::to_string(accepted) + ", NMPC " +
+                               walkgen::to_string(solved));
+    }
     interp.interpolate(mpc, samples.data() + std::size_t(k * interp.samples_per_tick()));
     mpc.advance();
   }

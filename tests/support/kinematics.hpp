@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "walkgen/core/math.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 
 namespace walkgen_test {
@@ -99,8 +100,8 @@ inline Eigen::VectorXd random_configuration(const Tree& tree, std::mt19937& rng)
   const Eigen::VectorXd lower = tree.lower_limits(), upper = tree.upper_limits();
   Eigen::VectorXd q(tree.num_joints());
   for (Eigen::Index i = 0; i < q.size(); ++i) {
-    const double lo = std::isfinite(lower[i]) ? lower[i] : -M_PI;
-    const double hi = std::isfinite(upper[i]) ? upper[i] : M_PI;
+    const double lo = std::isfinite(lower[i]) ? lower[i] : -walkgen::kPi;
+    const double hi = std::isfinite(upper[i]) ? upper[i] : walkgen::kPi;
     q[i] = std::uniform_real_distribution<double>(lo, hi)(rng);
   }
   return q;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/simulated_tasks.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
 #include "walkgen/opencv/demonstration_recorder.hpp"
 #include "walkgen/opencv/stereo_depth.hpp"
@@ -50,6 +51,7 @@ struct NavigationResult {
   std::vector<Eigen::Vector3d> commands;  ///< one per tick
   std::vector<double> zmp_distance;       ///< NMPC vs measured ZMP per valid sample [m]
   long qp_failures = 0;
+  long rejected_commands = 0;  ///< policy commands the loop rejected (non-finite): the last stays
 };
 
 /// The planar pose of a camera (position, heading of its optical axis x) in the world.
@@ -91,9 +93,9 @@ class ScriptedExpert {
           walkgen::GoToTargetSettings s;
           s.stop_distance = stop_distance;
           s.heading_gain = 0.35;
-          s.max_aim_off_target = 16.0 * EIGEN_PI / 180.0;  // the target stays in view
-          s.aim_limit_opens_within = 0.25;                 // ... unless the chair is close
-          s.pass_side = side_for(scene);                   // every chair on its left
+          s.max_aim_off_target = 16.0 * walkgen::kPi / 180.0;  // the target stays in view
+          s.aim_limit_opens_within = 0.25;                     // ... unless the chair is close
+          s.pass_side = side_for(scene);                       // every chair on its left
           return s;
         }()) {}
 
@@ -101,7 +103,7 @@ class ScriptedExpert {
     const walkgen::PlanarPose pose =
         o.images != nullptr ? camera_planar_pose(o.images->left) : o.pose;
     if (scene_.has_person &&
-        in_sight(scene_.person.position(o.time), pose, 1.2, 60.0 * EIGEN_PI / 180.0)) {
+        in_sight(scene_.person.position(o.time), pose, 1.2, 60.0 * walkgen::kPi / 180.0)) {
       return Eigen::Vector3d::Zero();  // let the person pass
     }
     const walkgen::GoToTargetCommand steer = steer_(o.pose);
@@ -109,7 +111,7 @@ class ScriptedExpert {
       const double bearing = bearing_of(scene_.target, pose);
       if (std::abs(bearing) < half_horizontal_fov(o.images->left) - 0.05) {
         seen_ = true;
-      } else if (!seen_ || steer.passing < 0 || std::abs(bearing) > EIGEN_PI / 2.0) {
+      } else if (!seen_ || steer.passing < 0 || std::abs(bearing) > walkgen::kPi / 2.0) {
         return {0.0, 0.0, seen_ ? std::copysign(limit_.z(), bearing) : -limit_.z()};
       }
     }
@@ -133,7 +135,7 @@ class ScriptedExpert {
   /// The direction of `point` seen from `pose`, from its heading, in (−π, π] (left > 0).
   static double bearing_of(const Eigen::Vector2d& point, const walkgen::PlanarPose& pose) {
     return std::remainder(std::atan2(point.y() - pose.y, point.x() - pose.x) - pose.yaw,
-                          2.0 * EIGEN_PI);
+                          2.0 * walkgen::kPi);
   }
 
   /// Whether `point` is within `range` of `pose` and `half_angle` of its heading.
@@ -245,7 +247,7 @@ inline NavigationResult run_navigation_episode(const walkgen::NavigationScene& s
       options.recorder->record(t, images.left, frame.disparity, label);
     }
     result.commands.push_back(command);
-    loop.set_command(command);
+    result.rejected_commands += loop.set_command(command) != walkgen::CommandStatus::accepted;
     const walkgen::LoopTick& tick = loop.tick();
     result.qp_failures += tick.mpc != walkgen::MpcStatus::solved;
     for (const auto& s : loop.samples()) {

@@ -119,6 +119,7 @@ struct TaskResult {
   /// Smallest distance of a sole centre in contact (true pose) to an obstacle's centre [m].
   double min_obstacle_distance = 1e9;
   int qp_failures = 0, ik_failures = 0;
+  int rejected_commands = 0;  ///< steering commands the loop rejected (non-finite, too large)
   double min_base_height = 1e9;
   std::vector<TaskRow> rows;
 
@@ -201,7 +202,7 @@ inline TaskResult run_task(const SimTask& task, double settle = 2.0,
   double stopped_at = -1.0;
   while (robot.output().time - t0 < task.time_limit) {
     const walkgen::GoToTargetCommand cmd = steering(walking_pose(loop.mpc().state()));
-    loop.set_command(cmd.command);
+    result.rejected_commands += loop.set_command(cmd.command) != walkgen::CommandStatus::accepted;
     if (cmd.reached && stopped_at < 0.0) {
       result.stopped = true;
       stopped_at = robot.output().time;

@@ -63,6 +63,7 @@ struct Landing {
 /// Everything a scenario run produced.
 struct ScenarioRun {
   std::vector<walkgen::TrajectorySample<double>> samples;  // every command period
+  std::vector<walkgen::CommandStatus> commands;            // every tick: set_command()'s outcome
   std::vector<walkgen::MpcResult<double>> results;         // every tick
   std::vector<walkgen::WalkingState<double>> states;       // every tick, before solve()
   std::vector<walkgen::WalkingPlan<double>> plans;         // every tick, after solve()
@@ -81,7 +82,7 @@ ScenarioRun run_scenario(const Scenario& sc, walkgen::WalkingSettings<double> s)
   run.landings.push_back({0.0, walkgen::other(st0.support_foot), st0.swing_origin});
   std::vector<walkgen::TrajectorySample<double>> buffer(std::size_t(interp.samples_per_tick()));
   for (int k = 0; k < sc.ticks; ++k) {
-    mpc.set_command(sc.command(k));
+    run.commands.push_back(mpc.set_command(sc.command(k)));
     run.states.push_back(mpc.state());
     run.results.push_back(mpc.solve());
     run.plans.push_back(mpc.plan());

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <torch/torch.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "support/enum_strings.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/torch/environment.hpp"
 #include "walkgen/torch/nmpc_environment.hpp"
 #include "walkgen/torch/parallel.hpp"
@@ -22,6 +25,15 @@ namespace {
 
 std::string temp_path(const std::string& name) {
   return std::string(WALKGEN_TORCH_TEST_DIR) + "/" + name;
+}
+
+// The status of an environment step follows the status enums' to_string() convention
+// (tests/core/test_status_strings.cpp).
+TEST(EpisodeEnd, EveryEnumeratorHasItsOwnNameAndOutOfRangeIsUnknown) {
+  using walkgen::EpisodeEnd;
+  walkgen_test::expect_enum_strings(std::array<EpisodeEnd, 4>{
+      EpisodeEnd::none, EpisodeEnd::success, EpisodeEnd::failure, EpisodeEnd::truncated});
+  static_assert(to_string(EpisodeEnd::truncated)[0] == 't');
 }
 
 TEST(Gae, MatchesHandComputation) {
@@ -56,11 +68,11 @@ TEST(TorchActorCritic, GaussianLogProbAndEntropy) {
   const double sigma = 0.3;
   double expected = 0.0;
   for (double d : {0.3, 0.3})
-    expected += -d * d / (2 * sigma * sigma) - std::log(sigma) - 0.5 * std::log(2 * M_PI);
+    expected += -d * d / (2 * sigma * sigma) - std::log(sigma) - 0.5 * std::log(2 * walkgen::kPi);
   EXPECT_NEAR(ppo.model()->log_prob(mean, a).item<double>(), expected, 1e-5);
   // eq. 11.2 per dimension
   EXPECT_NEAR(ppo.model()->entropy().item<double>(),
-              2 * (0.5 + 0.5 * std::log(2 * M_PI) + std::log(sigma)), 1e-5);
+              2 * (0.5 + 0.5 * std::log(2 * walkgen::kPi) + std::log(sigma)), 1e-5);
   EXPECT_NEAR(ppo.std(), sigma, 1e-6);
 }
 
@@ -135,7 +147,8 @@ TEST(TorchPpo, SaveLoadTorchScriptRoundTrip) {
   // A policy of other sizes cannot take these weights; a missing file is a named error.
   walkgen::TorchPpo other(5, 2, s);
   EXPECT_THROW(other.load_parameters(path), walkgen::invalid_argument);
-  EXPECT_THROW(walkgen::TorchPpo::load(temp_path("no_such_policy.pt")), walkgen::invalid_argument);
+  EXPECT_THROW((void)walkgen::TorchPpo::load(temp_path("no_such_policy.pt")),
+               walkgen::invalid_argument);
   EXPECT_THROW(ppo.save("/no/such/folder/p.pt"), walkgen::invalid_argument);
 }
 

@@ -27,7 +27,7 @@
 /// search, and a warm solve starts with the trust region the previous one ended with.
 ///
 /// Allocation: ceres::Solve allocates on every call (its preprocessor, evaluator and summary);
-/// the solver is not allocation-free (DESIGN.md convention 6 is waived for this adapter).
+/// the solver is not allocation-free (docs/design.md convention 6 is waived for this adapter).
 ///
 /// Errors (convention 10): bad settings, unknown link names and wrong sizes throw
 /// walkgen::invalid_argument; a non-finite target returns IkStatus::invalid_input and an
@@ -40,12 +40,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 
@@ -171,7 +171,7 @@ inline double rotation_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b)
 
 /// |x − y| wrapped to [0, π] [rad].
 inline double angle_difference(double x, double y) {
-  return std::abs(std::remainder(x - y, 2.0 * M_PI));
+  return std::abs(std::remainder(x - y, 2.0 * kPi));
 }
 
 }  // namespace detail
@@ -277,7 +277,7 @@ class CeresInverseKinematics {
 
   /// Solves for `target`, warm-started from the current solution. On convergence the solution
   /// is updated; otherwise it is kept and the status says why.
-  IkResult solve(const IkTarget& target) {
+  [[nodiscard]] IkResult solve(const IkTarget& target) {
     IkResult result;
     if (!target.all_finite()) return result;  // invalid_input
     residual_->target_ = target;
@@ -536,8 +536,8 @@ class CeresInverseKinematics {
     for (Eigen::Index i = 0; i < q.size() && run > 0; ++i) {
       state = state * 1664525u + 1013904223u;
       const double u = double(state >> 8) / double(1u << 24);  // [0, 1)
-      const double lo = std::isfinite(lower_[i]) ? lower_[i] : q[i] - M_PI;
-      const double hi = std::isfinite(upper_[i]) ? upper_[i] : q[i] + M_PI;
+      const double lo = std::isfinite(lower_[i]) ? lower_[i] : q[i] - kPi;
+      const double hi = std::isfinite(upper_[i]) ? upper_[i] : q[i] + kPi;
       q[i] += fraction * (lo + (0.1 + 0.8 * u) * (hi - lo) - q[i]);
     }
     residual_->start_rotation_ = R;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/mpc/settings.hpp"
 
 namespace walkgen {
@@ -50,7 +51,7 @@ struct GoToTargetSettings {
   /// The aim direction stays within this angle of the direction to the target, so that a
   /// camera looking ahead keeps the target in view while passing an obstacle (the way around
   /// becomes a curve; the NMPC's obstacle rows still keep the feet out). π: no limit.
-  double max_aim_off_target = 3.14159265358979323846;
+  double max_aim_off_target = kPi;
   /// Within this distance [m] of a blocking obstacle's inflated circle the limit above opens,
   /// linearly, to none at the circle, so that a robot which walked up to the obstacle still
   /// turns enough to get around it (at the circle the tangent is 90° off the centre). 0: the
@@ -203,8 +204,6 @@ class GoToTarget {
   const Eigen::Vector2d& target() const { return target_; }
 
  private:
-  static constexpr double kPi = 3.14159265358979323846;
-
   Eigen::Vector2d target_;
   Eigen::Vector3d max_command_;
   std::vector<CircleObstacle<double>> obstacles_;

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/foot.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
@@ -51,7 +52,8 @@ enum class LoopStatus : std::uint8_t {
   not_started  ///< tick() before start(), or after the robot stopped
 };
 
-inline const char* to_string(LoopStatus s) {
+/// The enumerator's name ("ok", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(LoopStatus s) noexcept {
   switch (s) {
     case LoopStatus::ok:
       return "ok";
@@ -61,9 +63,10 @@ inline const char* to_string(LoopStatus s) {
       return "fallen";
     case LoopStatus::diverged:
       return "diverged";
-    default:
+    case LoopStatus::not_started:
       return "not_started";
   }
+  return "unknown";
 }
 
 /// Settings of the loop itself; the generator's are WalkingSettings (t, command_period,
@@ -104,7 +107,9 @@ struct LoopSample {
 struct LoopTick {
   LoopStatus status = LoopStatus::not_started;
   MpcStatus mpc = MpcStatus::solved;
-  int ik_failures = 0;  ///< samples whose IK did not converge (previous joints sent again)
+  /// Samples whose IK did not converge (previous joints sent again) or whose joints the robot
+  /// rejected as non-finite (previous targets kept).
+  int ik_failures = 0;
   bool fed_back = false;
   /// Measured − planned CoM position at the feedback of this tick [m] (zero without one).
   Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
@@ -168,8 +173,9 @@ class WalkingLoop {
   /// measured. Then the generator's state is set from the measurement (CoM from forward
   /// kinematics, the support sole at the settings' foot pose, the other foot where it is,
   /// standing still).
-  /// @return ok, or fallen / diverged when the robot stopped during the transfer.
-  const LoopTick& start() {
+  /// @return ok, or fallen / diverged when the robot stopped during the transfer; ik_failures
+  ///   counts the transfer's samples whose IK did not converge (previous joints sent again).
+  [[nodiscard]] const LoopTick& start() {
     tick_ = LoopTick();
     started_ = false;
     const WalkingSettings<double>& s = mpc_.settings();
@@ -191,7 +197,7 @@ class WalkingLoop {
       const double r = double(k) / double(n);
       const double blend = r * r * r * (10.0 - 15.0 * r + 6.0 * r * r);  // minimum jerk
       target.com_W = c0 + blend * (c1 - c0);
-      ik_.solve(target);
+      tick_.ik_failures += ik_.solve(target).status != IkStatus::converged;  // previous joints
       if (!send_and_step(dt)) return tick_;
     }
     to_tree_order(robot_.output().q);
@@ -213,11 +219,13 @@ class WalkingLoop {
   }
 
   /// The velocity command (v_x, v_y [m/s], ω_z [rad/s]) in the robot frame, for the next ticks.
-  CommandStatus set_command(const Eigen::Vector3d& command) { return mpc_.set_command(command); }
+  [[nodiscard]] CommandStatus set_command(const Eigen::Vector3d& command) {
+    return mpc_.set_command(command);
+  }
 
   /// One NMPC period: feedback (when due), solve, interpolate, and per command period IK,
   /// joint targets and a robot step. samples() holds what happened.
-  const LoopTick& tick() {
+  [[nodiscard]] const LoopTick& tick() {
     tick_ = LoopTick();
     if (!started_) {
       tick_.message = "WalkingLoop::tick: call start() first (or the robot stopped)";
@@ -267,8 +275,6 @@ class WalkingLoop {
   long ticks() const { return ticks_; }
 
  private:
-  static Foot other(Foot f) { return f == Foot::left ? Foot::right : Foot::left; }
-
   void to_tree_order(const Eigen::VectorXd& q_robot) {
     for (std::size_t j = 0; j < to_tree_.size(); ++j) {
       q_tree_[to_tree_[j]] = q_robot[Eigen::Index(j)];
@@ -276,12 +282,13 @@ class WalkingLoop {
   }
 
   /// Sends the IK's joints to the robot and steps it by dt; false (status and message set,
-  /// the loop stopped) when the robot stopped.
+  /// the loop stopped) when the robot stopped. A robot rejects non-finite joints and keeps its
+  /// previous targets: such a sample counts as one whose IK failed.
   bool send_and_step(double dt) {
     for (std::size_t j = 0; j < to_tree_.size(); ++j) {
       q_robot_[Eigen::Index(j)] = ik_.q()[to_tree_[j]];
     }
-    robot_.set_joint_targets(q_robot_);
+    if (robot_.set_joint_targets(q_robot_) != JointCommandStatus::accepted) ++tick_.ik_failures;
     const RobotStatus rs = robot_.step(dt);
     if (rs == RobotStatus::ok) return true;
     tick_.status = rs == RobotStatus::fallen ? LoopStatus::fallen : LoopStatus::diverged;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Internal invariant checks (DESIGN.md convention 10, tier a).
+/// Internal invariant checks (docs/design.md convention 10, tier a).
 ///
 /// WALKGEN_ASSERT(cond) guards invariants of walkgen's own code. It is compiled out when
 /// NDEBUG is defined (release builds) unless WALKGEN_ENABLE_ASSERTS is defined. A failed

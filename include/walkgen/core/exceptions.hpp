@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Exceptions thrown at walkgen's API boundaries (DESIGN.md convention 10, tier b).
+/// Exceptions thrown at walkgen's API boundaries (docs/design.md convention 10, tier b).
 ///
 /// Bad input that a caller can fix (wrong sizes, malformed files, out-of-range settings)
 /// throws walkgen::invalid_argument with a message of the form

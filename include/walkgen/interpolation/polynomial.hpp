@@ -9,7 +9,7 @@
 /// boundary conditions by tests/interpolation/test_polynomial.cpp). Scalar-generic; no allocation.
 
 #include <Eigen/Core>
-#include <cmath>
+#include <algorithm>
 
 #include "walkgen/core/exceptions.hpp"
 

@@ -64,6 +64,19 @@ enum class IkStatus {
   invalid_input,  ///< a non-finite target; nothing was solved, previous solution kept
 };
 
+/// The enumerator's name ("converged", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(IkStatus status) noexcept {
+  switch (status) {
+    case IkStatus::converged:
+      return "converged";
+    case IkStatus::not_converged:
+      return "not_converged";
+    case IkStatus::invalid_input:
+      return "invalid_input";
+  }
+  return "unknown";
+}
+
 /// Result of an inverse-kinematics solve (e.g. CeresInverseKinematics::solve()): status, work and
 /// the unweighted errors of the final iterate (of the best run; infinity when nothing was solved).
 struct IkResult {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Kinematic tree of a floating-base robot, templated on the scalar (DESIGN.md convention 7):
+/// Kinematic tree of a floating-base robot, templated on the scalar (docs/design.md convention 7):
 /// forward kinematics of every link (thesis §2.4.1, eq. 2.112), the whole-body centre of mass,
 /// frame Jacobians and the centre-of-mass Jacobian (the J of eq. 2.114). Eigen only, so that
 /// automatic-differentiation scalars (ceres::Jet) flow through the same code.
@@ -209,7 +209,6 @@ class KinematicTree {
  public:
   using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
   using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
-  using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix3X = Eigen::Matrix<Scalar, 3, Eigen::Dynamic>;
   using Matrix6X = Eigen::Matrix<Scalar, 6, Eigen::Dynamic>;
 

@@ -2,13 +2,12 @@
 /// @file
 /// Linear inverted pendulum with piecewise-constant jerk: one-step dynamics (thesis eq. 2.25–2.29)
 /// and the preview matrices over a horizon of N samples (eq. 2.30–2.42, with the errata of
-/// DESIGN.md §5: eq. 2.30 misses a '+', P_pu has (1+3j+3j²)T³/6 and P_vu (1+2j)T²/2, j = row −
+/// docs/design.md §5: eq. 2.30 misses a '+', P_pu has (1+3j+3j²)T³/6 and P_vu (1+2j)T²/2, j = row −
 /// col).
 ///
 /// State of one axis: c = (position, velocity, acceleration); input: jerk, constant over T.
 
 #include <Eigen/Core>
-#include <cmath>
 
 #include "walkgen/core/exceptions.hpp"
 

@@ -2,7 +2,7 @@
 /// @file
 /// Convex polygons as half-planes (thesis eq. 2.61–2.64): the ZMP support polygon and the
 /// footstep feasibility regions. Vertices may be given clockwise or counter-clockwise; the
-/// signs are fixed so that the polygon's centroid satisfies A p ≤ b (DESIGN.md §5 erratum:
+/// signs are fixed so that the polygon's centroid satisfies A p ≤ b (docs/design.md §5 erratum:
 /// the thesis's sign depends on the vertex order).
 
 #include <Eigen/Core>
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 
 namespace walkgen {
 
@@ -40,7 +41,7 @@ const char* convex_polygon_problem(const Eigen::MatrixBase<Derived>& vertices) {
     sign = s;
     turning += std::atan2(cross, ex * fx + ey * fy);
   }
-  if (std::abs(std::abs(turning) - Scalar(6.283185307179586) /* 2π */) > Scalar(1e-6)) {
+  if (std::abs(std::abs(turning) - Scalar(2.0 * kPi)) > Scalar(1e-6)) {
     return "the polygon winds more than once (self-intersecting)";
   }
   return nullptr;

@@ -102,8 +102,8 @@ struct WalkingSettings {
   /// CoM velocity cost (alpha) cannot, as that cost also charges the sway (docs/tuning.md).
   Scalar step_velocity_weight = Scalar(10);
   /// [s] the thesis's qpOASES wall-clock limit (`cpu_time`). Accepted for compatibility and
-  /// ignored: a wall-clock limit made the thesis's runs fail under load (DESIGN.md §4); walkgen
-  /// limits work by iterations (`nwsr`) instead.
+  /// ignored: a wall-clock limit made the thesis's runs fail under load (docs/design.md §4);
+  /// walkgen limits work by iterations (`nwsr`) instead.
   Scalar cpu_time = Scalar(0.01);
   /// Maximal active-set changes per QP solve (`nwsr`); reaching it fails the tick safely.
   int nwsr = 100;

@@ -61,10 +61,19 @@ enum class CommandStatus : std::uint8_t {
   out_of_range,  ///< beyond WalkingSettings::max_command: rejected, the previous command stays
 };
 
-inline const char* to_string(MpcStatus s) {
-  return s == MpcStatus::solved ? "solved" : "qp_failed";
+/// The enumerator's name ("solved", "qp_failed"), e.g. for logs; "unknown" out of range.
+constexpr const char* to_string(MpcStatus s) noexcept {
+  switch (s) {
+    case MpcStatus::solved:
+      return "solved";
+    case MpcStatus::qp_failed:
+      return "qp_failed";
+  }
+  return "unknown";
 }
-inline const char* to_string(CommandStatus s) {
+
+/// The enumerator's name ("accepted", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(CommandStatus s) noexcept {
   switch (s) {
     case CommandStatus::accepted:
       return "accepted";
@@ -153,7 +162,6 @@ class WalkingMpc {
   using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using MatrixX = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using RowMatrixX = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  using HorizonVector = Eigen::Matrix<Scalar, N, 1>;
   using FootPolygon = Eigen::Matrix<Scalar, FootEdges, 2>;
   using FootRhs = Eigen::Matrix<Scalar, FootEdges, 1>;
   using HullPolygon = Eigen::Matrix<Scalar, HullEdges, 2>;
@@ -233,7 +241,7 @@ class WalkingMpc {
   // --- Inputs ------------------------------------------------------------------------------------
   /// Velocity command (v_x, v_y [m/s], ω_z [rad/s]) in the robot's frame (the heading).
   /// Non-finite or out-of-range commands are rejected (the previous one stays) and reported.
-  CommandStatus set_command(const Vector3& command) {
+  [[nodiscard]] CommandStatus set_command(const Vector3& command) {
     CommandStatus status = CommandStatus::accepted;
     if (!command.allFinite()) {
       status = CommandStatus::non_finite;
@@ -291,7 +299,7 @@ class WalkingMpc {
   /// Plans from the current state: sqp_iterations Gauss–Newton steps (eq. 2.83–2.89), each a QP
   /// linearised at the current iterate (the previous plan, shifted, on the first). A failed QP is
   /// never applied: the plan stays the previous iterate and the status says qp_failed.
-  const Result& solve() {
+  [[nodiscard]] const Result& solve() {
     result_.status = MpcStatus::solved;
     result_.sqp_iterations = 0;
     result_.qp_iterations = 0;
@@ -364,13 +372,6 @@ class WalkingMpc {
   Foot foot_of_step(Index i) const {
     return (i % 2 == 0) ? state_.support_foot : other(state_.support_foot);
   }
-  /// ZMP support polygon half-planes A z ≤ b of `foot` in its own frame (shrunk by the margin).
-  const FootPolygon& zmp_A(Foot foot) const { return foot_A_[index(foot)]; }
-  const FootRhs& zmp_b(Foot foot) const { return foot_b_[index(foot)]; }
-  /// Feasibility half-planes of the region where `landing` may land, in the frame of the other
-  /// foot.
-  const HullPolygon& hull_A(Foot landing) const { return hull_A_[index(landing)]; }
-  const HullRhs& hull_b(Foot landing) const { return hull_b_[index(landing)]; }
 
   /// The QP of the last SQP iteration (H, g, A, lb ≤ A U ≤ ub, l ≤ U ≤ u): for tests and
   /// diagnostics (e.g. Jacobians against finite differences).
@@ -619,7 +620,7 @@ class WalkingMpc {
     step_target_y_[0] += state_.support.y;
   }
 
-  /// Cost (eq. 2.51–2.60, gradient corrected per DESIGN.md §5) and linearised constraints
+  /// Cost (eq. 2.51–2.60, gradient corrected per docs/design.md §5) and linearised constraints
   /// (eq. 2.84–2.88) at the iterate plan_.U.
   void assemble() {
     U_prev_ = plan_.U;
@@ -759,7 +760,7 @@ class WalkingMpc {
       });
     }
     // Feasibility rows (eq. 2.70–2.72): a_eᵀ R(θ_{i−1})ᵀ (F_i − F_{i−1}) ≤ b_e, with the
-    // polygon of the landing foot (never the other one: DESIGN.md §4).
+    // polygon of the landing foot (never the other one: docs/design.md §4).
     for (Index i = 1; i <= nf_; ++i) {
       const Foot landing = foot_of_step(i);
       const auto& A = hull_A_[index(landing)];
@@ -861,7 +862,7 @@ class WalkingMpc {
   LipmPreview<Scalar, N> lipm_;
   LipmStep<Scalar> step_;
   DenseQp<Scalar> qp_;
-  std::array<Eigen::Matrix<Scalar, FootEdges, 2>, 2> foot_A_;
+  std::array<FootPolygon, 2> foot_A_;
   std::array<FootRhs, 2> foot_b_;
   std::array<HullPolygon, 2> hull_A_;
   std::array<HullRhs, 2> hull_b_;

@@ -29,21 +29,13 @@
 #include <string>
 #include <vector>
 
+#include "walkgen/core/data_dir.hpp"
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
 #include "walkgen/robot_io/robot.hpp"
 
 namespace walkgen {
-
-/// The MJCF of walkgen's humanoid as the walkgen::mujoco target knows it (source tree, or the
-/// installed share/walkgen/models); empty when compiled without that target's definition.
-inline std::string humanoid_mjcf_path() {
-#ifdef WALKGEN_HUMANOID_MJCF
-  return WALKGEN_HUMANOID_MJCF;
-#else
-  return {};
-#endif
-}
 
 /// Shapes of SceneObject.
 enum class SceneShape : std::uint8_t { box, cylinder, sphere };
@@ -138,7 +130,8 @@ class MujocoRobot final : public Robot {
   const mjModel* model() const { return model_.get(); }
   mjData* data() { return data_.get(); }
 
-  JointCommandStatus set_joint_targets(const Eigen::Ref<const Eigen::VectorXd>& q_target) override {
+  [[nodiscard]] JointCommandStatus set_joint_targets(
+      const Eigen::Ref<const Eigen::VectorXd>& q_target) override {
     check_argument(q_target.size() == q_target_.size(), "MujocoRobot::set_joint_targets",
                    std::to_string(q_target_.size()) + " joint targets (one per joint name)",
                    q_target.size());
@@ -147,7 +140,7 @@ class MujocoRobot final : public Robot {
     return JointCommandStatus::accepted;
   }
 
-  RobotStatus step(double duration) override {
+  [[nodiscard]] RobotStatus step(double duration) override {
     check_positive("MujocoRobot::step: duration", duration, "a finite duration > 0 s");
     if (output_.status != RobotStatus::ok) return output_.status;
     for (std::size_t i = 0; i < joints_.size(); ++i)
@@ -162,7 +155,7 @@ class MujocoRobot final : public Robot {
     return output_.status;
   }
 
-  const StereoImages& render_cameras() override {
+  [[nodiscard]] const StereoImages& render_cameras() override {
     if (!renderer_ready()) return images_;
     for (int c = 0; c < 2; ++c)
       render_camera(camera_ids_[c], c == 0 ? images_.left : images_.right);
@@ -178,8 +171,8 @@ class MujocoRobot final : public Robot {
   ///   message says why.
   /// @throws walkgen::invalid_argument for a size beyond the settings' view size or a
   ///   non-finite view.
-  bool render_view(const Eigen::Vector3d& lookat, double distance, double azimuth, double elevation,
-                   int width, int height, CameraImage& image) {
+  [[nodiscard]] bool render_view(const Eigen::Vector3d& lookat, double distance, double azimuth,
+                                 double elevation, int width, int height, CameraImage& image) {
     check_argument(width >= 1 && height >= 1 && width <= settings_.view_width &&
                        height <= settings_.view_height,
                    "MujocoRobot::render_view: size",
@@ -198,7 +191,7 @@ class MujocoRobot final : public Robot {
     camera.azimuth = azimuth;
     camera.elevation = elevation;
     render_into(camera, width, height, image);
-    image.fovy = model_->vis.global.fovy * EIGEN_PI / 180.0;
+    image.fovy = model_->vis.global.fovy * kPi / 180.0;
     return true;
   }
 
@@ -258,7 +251,8 @@ class MujocoRobot final : public Robot {
   void load_model() {
     const std::string& path = settings_.model_path;
     check_argument(!path.empty(), "MujocoRobot: model_path", "an MJCF file", "''",
-                   "this build has no WALKGEN_HUMANOID_MJCF: link walkgen::mujoco or pass a path");
+                   "no data folder is known (walkgen::data_dir() is empty): link walkgen's CMake "
+                   "target, set the environment variable WALKGEN_DATA_DIR, or pass a path");
     check_argument(std::ifstream(path).good(), "MujocoRobot: model_path", "a readable MJCF file",
                    "'" + path + "' (cannot be opened)");
     char error[1000] = "";
@@ -514,7 +508,7 @@ class MujocoRobot final : public Robot {
     camera.type = mjCAMERA_FIXED;
     camera.fixedcamid = camera_id;
     render_into(camera, info_.image_width, info_.image_height, image);
-    image.fovy = model_->cam_fovy[camera_id] * EIGEN_PI / 180.0;
+    image.fovy = model_->cam_fovy[camera_id] * kPi / 180.0;
     // MuJoCo's camera looks along its -z with y up; ours looks along x with z up.
     const Eigen::Isometry3d mujoco_camera =
         pose(data_->cam_xpos + 3 * camera_id, data_->cam_xmat + 9 * camera_id);

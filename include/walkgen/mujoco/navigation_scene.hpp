@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/mpc/settings.hpp"
 #include "walkgen/mujoco/mujoco_robot.hpp"
 
@@ -33,7 +34,9 @@ enum class NavigationTask : std::uint8_t {
   distractor,  ///< the target and an object of similar colour elsewhere in view
 };
 
-inline const char* to_string(NavigationTask t) {
+/// The enumerator's name ("straight", ...), as navigation_task_from_string() reads it; "unknown"
+/// for a value out of range.
+constexpr const char* to_string(NavigationTask t) noexcept {
   switch (t) {
     case NavigationTask::straight:
       return "straight";
@@ -45,9 +48,10 @@ inline const char* to_string(NavigationTask t) {
       return "scan";
     case NavigationTask::dynamic:
       return "dynamic";
-    default:
+    case NavigationTask::distractor:
       return "distractor";
   }
+  return "unknown";
 }
 
 /// Every task, in enum order.
@@ -204,7 +208,7 @@ inline NavigationScene make_navigation_scene(NavigationTask task, std::uint32_t 
     return std::uniform_real_distribution<double>(a, b)(rng);
   };
   auto polar = [](double r, double angle_deg) {
-    const double a = angle_deg * 3.14159265358979323846 / 180.0;
+    const double a = angle_deg * kPi / 180.0;
     return Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
   };
   NavigationScene s;

@@ -118,7 +118,8 @@ class DemonstrationRecorder {
 /// Reads <folder>/index.txt.
 /// @throws walkgen::invalid_argument when the file is missing or a line is malformed (naming
 ///   the line).
-inline std::vector<DemonstrationEntry> read_demonstration_index(const std::string& folder) {
+[[nodiscard]] inline std::vector<DemonstrationEntry> read_demonstration_index(
+    const std::string& folder) {
   const std::string path = folder + "/index.txt";
   std::ifstream in(path);
   check_argument(in.good(), "read_demonstration_index", "a readable index.txt",

@@ -4,7 +4,7 @@
 /// (thesis §3.2, eq. 3.9–3.15; §10.1, Tables 10.1–10.2). OpenCV adapter: target walkgen::opencv
 /// (Debian: libopencv-dev, libopencv-contrib-dev); the core never includes this header.
 ///
-/// Camera model (eq. 3.9–3.11, with the erratum of DESIGN.md §5: the y row of eq. 3.11 scales
+/// Camera model (eq. 3.9–3.11, with the erratum of docs/design.md §5: the y row of eq. 3.11 scales
 /// y_{c,d}, not x_{c,d}): K = [f_x 0 c_x; 0 f_y c_y; 0 0 1] and OpenCV's distortion vector
 /// (k₁, k₂, p₁, p₂, k₃[, k₄, k₅, k₆]). Pixel coordinates are OpenCV's: (0, 0) is the centre of the
 /// top-left pixel. Lengths (square size, baseline T) are in the unit of the square size, metres
@@ -431,7 +431,7 @@ inline void save_stereo_calibration(const StereoCalibration& c, const std::strin
 /// Reads a file written by save_stereo_calibration (rms values are optional).
 /// @throws walkgen::invalid_argument when the file cannot be read, or a key is missing or has the
 ///   wrong shape (naming the file and the key).
-inline StereoCalibration load_stereo_calibration(const std::string& path) {
+[[nodiscard]] inline StereoCalibration load_stereo_calibration(const std::string& path) {
   check_argument(std::filesystem::is_regular_file(path), "walkgen::load_stereo_calibration",
                  "a readable YAML file", "'" + path + "' (missing)");
   cv::FileStorage fs;

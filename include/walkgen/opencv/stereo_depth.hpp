@@ -32,6 +32,7 @@
 #include <string>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/opencv/stereo_calibration.hpp"
 
 namespace walkgen {
@@ -105,7 +106,7 @@ struct PinholeIntrinsics {
 inline PinholeIntrinsics pinhole_from_fovy(int width, int height, double fovy) {
   check_argument(width > 0 && height > 0, "walkgen::pinhole_from_fovy: image size",
                  "positive width and height", std::to_string(width) + "x" + std::to_string(height));
-  check_argument(fovy > 0.0 && fovy < 3.14159265358979323846, "walkgen::pinhole_from_fovy: fovy",
+  check_argument(fovy > 0.0 && fovy < kPi, "walkgen::pinhole_from_fovy: fovy",
                  "a field of view in (0, pi) rad", fovy);
   PinholeIntrinsics k;
   k.fy = 0.5 * height / std::tan(0.5 * fovy);

@@ -46,8 +46,8 @@ enum class QpStatus : std::uint8_t {
   invalid_input,   ///< the data are unusable (see QpResult::message); x is zero.
 };
 
-/// Human-readable name of a status, e.g. for logs.
-inline const char* to_string(QpStatus status) {
+/// The enumerator's name ("solved", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(QpStatus status) noexcept {
   switch (status) {
     case QpStatus::unsolved:
       return "unsolved";
@@ -269,7 +269,7 @@ class DenseQp {
   }
 
   /// Solves the problem set by init()/update(). Allocation-free.
-  const Result& solve();
+  [[nodiscard]] const Result& solve();
 
  private:
   static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();

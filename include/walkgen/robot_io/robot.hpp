@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The robot interface (DESIGN.md §1, "robot I/O"): joint position commands in; measured joints,
-/// ankle force-torque sensors, chest stereo images and time out. Eigen only: a simulator
+/// The robot interface (docs/design.md §1, "robot I/O"): joint position commands in; measured
+/// joints, ankle force-torque sensors, chest stereo images and time out. Eigen only: a simulator
 /// (walkgen/mujoco/mujoco_robot.hpp, target walkgen::mujoco) or a real robot implements it.
 ///
 /// Also the measured zero moment point from the two ankle force-torque sensors (thesis §2.1.2,
@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -36,8 +35,8 @@ enum class RobotStatus : std::uint8_t {
   diverged,  ///< the state became non-finite or the simulator gave up (bad accelerations)
 };
 
-/// "ok", "fallen" or "diverged", e.g. for logs.
-constexpr const char* to_string(RobotStatus status) {
+/// "ok", "fallen" or "diverged", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(RobotStatus status) noexcept {
   switch (status) {
     case RobotStatus::ok:
       return "ok";
@@ -54,6 +53,17 @@ enum class JointCommandStatus : std::uint8_t {
   accepted,  ///< the targets are applied from the next step on
   rejected,  ///< a target was not finite: the previous targets are kept
 };
+
+/// "accepted" or "rejected", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(JointCommandStatus status) noexcept {
+  switch (status) {
+    case JointCommandStatus::accepted:
+      return "accepted";
+    case JointCommandStatus::rejected:
+      return "rejected";
+  }
+  return "unknown";
+}
 
 /// One 6-axis ankle force-torque sensor (thesis fig. 2.3).
 struct ForceTorqueReading {
@@ -95,6 +105,17 @@ struct CameraImage {
 /// Whether images could be produced (offscreen rendering needs a GL context).
 enum class RenderStatus : std::uint8_t { ok, unavailable };
 
+/// "ok" or "unavailable", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(RenderStatus status) noexcept {
+  switch (status) {
+    case RenderStatus::ok:
+      return "ok";
+    case RenderStatus::unavailable:
+      return "unavailable";
+  }
+  return "unknown";
+}
+
 /// The chest stereo pair.
 struct StereoImages {
   CameraImage left;
@@ -125,20 +146,20 @@ class Robot {
   /// Joint position targets [rad] in info().joint_names order, applied from the next step on.
   /// @throws walkgen::invalid_argument when q_target has the wrong size.
   /// @return rejected (and the previous targets kept) when a target is not finite.
-  virtual JointCommandStatus set_joint_targets(
+  [[nodiscard]] virtual JointCommandStatus set_joint_targets(
       const Eigen::Ref<const Eigen::VectorXd>& q_target) = 0;
 
   /// Advances by `duration` [s] (rounded to whole timesteps, at least one) and returns the status;
   /// once it is not ok, step() does nothing until reset().
   /// @throws walkgen::invalid_argument when duration is not finite and > 0.
-  virtual RobotStatus step(double duration) = 0;
+  [[nodiscard]] virtual RobotStatus step(double duration) = 0;
 
   /// The latest measurements.
   virtual const RobotOutput& output() const = 0;
 
   /// Renders both chest cameras at the current state; status unavailable (with the reason) when
   /// there is no renderer.
-  virtual const StereoImages& render_cameras() = 0;
+  [[nodiscard]] virtual const StereoImages& render_cameras() = 0;
 
   /// Back to the initial state (time 0, status ok).
   virtual void reset() = 0;

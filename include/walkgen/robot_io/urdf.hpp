@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// URDF adapter (DESIGN.md conventions 10-12): reads a robot description (URDF) into a
+/// URDF adapter (docs/design.md conventions 10-12): reads a robot description (URDF) into a
 /// KinematicDescription / KinematicTree. Target walkgen::urdf (tinyxml2, Debian:
 /// libtinyxml2-dev); the core never includes this header.
 ///
@@ -18,8 +18,8 @@
 
 #include <tinyxml2.h>
 
+#include <cmath>
 #include <fstream>
-#include <limits>
 #include <locale>
 #include <sstream>
 #include <string>
@@ -170,7 +170,7 @@ inline std::string read_urdf_file(const std::string& path, const char* where) {
 /// @param source the document's name in messages (a path, or "URDF text")
 /// @throws walkgen::invalid_argument for malformed XML, a missing <robot>, missing or malformed
 /// attributes and unsupported joint types, naming the line and element.
-inline KinematicDescription kinematic_description_from_urdf(
+[[nodiscard]] inline KinematicDescription kinematic_description_from_urdf(
     const std::string& urdf, const std::string& source = "URDF text") {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(urdf.c_str(), urdf.size()) != tinyxml2::XML_SUCCESS) {
@@ -199,7 +199,8 @@ inline KinematicDescription kinematic_description_from_urdf(
 /// Reads a URDF file into a KinematicDescription.
 /// @throws walkgen::invalid_argument if the file cannot be read, and as
 /// kinematic_description_from_urdf().
-inline KinematicDescription kinematic_description_from_urdf_file(const std::string& path) {
+[[nodiscard]] inline KinematicDescription kinematic_description_from_urdf_file(
+    const std::string& path) {
   return kinematic_description_from_urdf(
       detail::read_urdf_file(path, "kinematic_description_from_urdf_file"), path);
 }
@@ -208,8 +209,8 @@ inline KinematicDescription kinematic_description_from_urdf_file(const std::stri
 /// @throws walkgen::invalid_argument as kinematic_description_from_urdf() and as the
 /// KinematicTree constructor (unknown links, cycles, ...), with `source` prepended.
 template <typename Scalar = double>
-KinematicTree<Scalar> kinematic_tree_from_urdf(const std::string& urdf,
-                                               const std::string& source = "URDF text") {
+[[nodiscard]] KinematicTree<Scalar> kinematic_tree_from_urdf(
+    const std::string& urdf, const std::string& source = "URDF text") {
   KinematicDescription d = kinematic_description_from_urdf(urdf, source);
   try {
     return KinematicTree<Scalar>(std::move(d));
@@ -220,7 +221,7 @@ KinematicTree<Scalar> kinematic_tree_from_urdf(const std::string& urdf,
 
 /// Reads a URDF file into a KinematicTree<Scalar>; see kinematic_tree_from_urdf().
 template <typename Scalar = double>
-KinematicTree<Scalar> kinematic_tree_from_urdf_file(const std::string& path) {
+[[nodiscard]] KinematicTree<Scalar> kinematic_tree_from_urdf_file(const std::string& path) {
   return kinematic_tree_from_urdf<Scalar>(
       detail::read_urdf_file(path, "kinematic_tree_from_urdf_file"), path);
 }

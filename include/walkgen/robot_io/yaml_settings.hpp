@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// YAML adapter for the walking settings (DESIGN.md conventions 10-12): reads the thesis's
+/// YAML adapter for the walking settings (docs/design.md conventions 10-12): reads the thesis's
 /// configuration files (Table 6.1) into a WalkingSettings. Target walkgen::yaml (yaml-cpp);
 /// the core never includes this header.
 ///
@@ -390,7 +390,7 @@ YAML::Node load_yaml(const std::string& source, Load&& load) {
 /// the wrong type or size (naming the key, with expected and got), or settings that fail
 /// validate().
 template <typename Scalar = double>
-WalkingSettings<Scalar> walking_settings_from_yaml(
+[[nodiscard]] WalkingSettings<Scalar> walking_settings_from_yaml(
     const std::string& text, const WalkingSettings<Scalar>& defaults = hrp2_settings<Scalar>()) {
   const std::string source = "YAML text";
   return detail::walking_settings_from_node(
@@ -400,7 +400,7 @@ WalkingSettings<Scalar> walking_settings_from_yaml(
 /// Walking settings from a YAML file; as walking_settings_from_yaml(), with `path` in messages.
 /// @throws walkgen::invalid_argument also when the file cannot be read.
 template <typename Scalar = double>
-WalkingSettings<Scalar> load_walking_settings(
+[[nodiscard]] WalkingSettings<Scalar> load_walking_settings(
     const std::string& path, const WalkingSettings<Scalar>& defaults = hrp2_settings<Scalar>()) {
   return detail::walking_settings_from_node(
       detail::load_yaml(path, [&] { return YAML::LoadFile(path); }), path, defaults);

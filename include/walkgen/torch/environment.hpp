@@ -3,7 +3,7 @@
 /// What every reinforcement-learning environment of walkgen::torch returns from a step, and the
 /// benchmarking environment of thesis §11.2.1 (figure 11.16): a point agent moves towards a goal.
 ///
-/// Environments are plain blocks (DESIGN.md convention 13): reset(), observe(), step(); they
+/// Environments are plain blocks (docs/design.md convention 13): reset(), observe(), step(); they
 /// depend on Eigen only, never reset themselves and never print. The trainer
 /// (walkgen/torch/ppo.hpp) owns the loop and resets an environment whose episode ended.
 
@@ -25,7 +25,8 @@ enum class EpisodeEnd : std::uint8_t {
   truncated,  ///< the step budget ran out (not a terminal state: the trainer bootstraps)
 };
 
-inline const char* to_string(EpisodeEnd e) {
+/// The enumerator's name ("none", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(EpisodeEnd e) noexcept {
   switch (e) {
     case EpisodeEnd::none:
       return "none";
@@ -121,7 +122,7 @@ class PointGoalEnv {
   }
 
   /// Moves the agent by action[0..2) (each clipped to [−1, 1]) times step_size.
-  EnvStep step(const float* action) {
+  [[nodiscard]] EnvStep step(const float* action) {
     const double before = (agent_ - goal_).norm();
     for (int i = 0; i < 2; ++i) {
       const double a = std::isfinite(action[i]) ? std::clamp<double>(action[i], -1.0, 1.0) : 0.0;

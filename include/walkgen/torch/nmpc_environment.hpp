@@ -15,7 +15,9 @@
 #include <random>
 #include <vector>
 
+#include "walkgen/core/assert.hpp"
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/mpc/settings.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
 #include "walkgen/torch/environment.hpp"
@@ -90,7 +92,6 @@ class NmpcGoalEnv {
   /// Draws a task: a goal at a uniform bearing in [−π, π) and a distance uniform in
   /// [goal_min_distance, goal_max_distance], and the obstacles in its way.
   NmpcGoalTask sample_task() {
-    constexpr double kPi = 3.14159265358979323846;
     std::uniform_real_distribution<double> bearing(-kPi, kPi);
     std::uniform_real_distribution<double> dist(s_.goal_min_distance, s_.goal_max_distance);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -131,7 +132,8 @@ class NmpcGoalEnv {
     goal_ = task.goal;
     mpc_.set_obstacles(obstacles_);
     mpc_.reset(Mpc::initial_state(s_.walking));
-    mpc_.set_command(Eigen::Vector3d::Zero());
+    [[maybe_unused]] const CommandStatus standing = mpc_.set_command(Eigen::Vector3d::Zero());
+    WALKGEN_ASSERT(standing == CommandStatus::accepted);  // 0 is within any max_command >= 0
     steps_ = 0;
     failed_ = false;
     min_clearance_ = std::numeric_limits<double>::infinity();
@@ -163,9 +165,10 @@ class NmpcGoalEnv {
   }
 
   /// Sends the action's command and runs ticks_per_step NMPC ticks.
-  EnvStep step(const float* action) {
+  [[nodiscard]] EnvStep step(const float* action) {
     EnvStep r;
-    mpc_.set_command(command_of(action));  // always accepted: |c| < max_command
+    [[maybe_unused]] const CommandStatus sent = mpc_.set_command(command_of(action));
+    WALKGEN_ASSERT(sent == CommandStatus::accepted);  // finite, |c| < max_command by command_of
     for (int k = 0; k < s_.ticks_per_step; ++k) {
       if (mpc_.solve().status != MpcStatus::solved) {
         failed_ = true;

@@ -2,7 +2,7 @@
 /// @file
 /// A fixed pool of threads that runs one function over an index range and waits: the vectorised
 /// environment step of walkgen::torch (several NMPC environments stepped at once). The pool is
-/// the application's object (DESIGN.md convention 13): it is created, sized and owned by the
+/// the application's object (docs/design.md convention 13): it is created, sized and owned by the
 /// program, which hands it to the trainer; environments never start threads.
 
 #include <condition_variable>

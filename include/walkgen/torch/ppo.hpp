@@ -16,7 +16,7 @@
 ///   ppo.save("policy.pt");                                       // TorchScript
 ///   walkgen::TorchPpo again = walkgen::TorchPpo::load("policy.pt");
 /// @endcode
-/// Type names carry the backend (DESIGN.md convention 12); no nested namespace torch.
+/// Type names carry the backend (docs/design.md convention 12); no nested namespace torch.
 
 #include <torch/script.h>
 #include <torch/torch.h>
@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 
 namespace walkgen {
 
@@ -165,10 +166,10 @@ class TorchActorCriticImpl : public torch::nn::Module {
   /// log π_θ(a | s) of the Gaussian, summed over action dimensions → [B].
   torch::Tensor log_prob(const torch::Tensor& mean, const torch::Tensor& action) const {
     const torch::Tensor var = torch::exp(2.0 * log_std_);
-    return (-(action - mean).pow(2) / (2.0 * var) - log_std_ - 0.5 * std::log(2.0 * M_PI)).sum(-1);
+    return (-(action - mean).pow(2) / (2.0 * var) - log_std_ - 0.5 * std::log(2.0 * kPi)).sum(-1);
   }
   /// S[π_θ] = Σ_dims 0.5 + 0.5 log(2π) + log σ (eq. 11.2).
-  torch::Tensor entropy() const { return (0.5 + 0.5 * std::log(2.0 * M_PI) + log_std_).sum(); }
+  torch::Tensor entropy() const { return (0.5 + 0.5 * std::log(2.0 * kPi) + log_std_).sum(); }
   TorchActivation activation() const { return activation_; }
 
  private:
@@ -343,7 +344,7 @@ class TorchPpo {
   /// Loads a policy saved by save(): sizes and layers from the file, training hyper-parameters
   /// from `settings` (its sizes and activation are replaced by the file's).
   /// @throws walkgen::invalid_argument if the file is missing or not a walkgen policy.
-  static TorchPpo load(const std::string& path, PpoSettings settings = {}) {
+  [[nodiscard]] static TorchPpo load(const std::string& path, PpoSettings settings = {}) {
     torch::jit::Module m;
     try {
       m = torch::jit::load(path);

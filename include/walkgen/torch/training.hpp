@@ -8,7 +8,6 @@
 /// and EnvStep step(const float*) (walkgen/torch/environment.hpp, nmpc_environment.hpp).
 
 #include <chrono>
-#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -194,7 +193,7 @@ struct PpoTestResult {
   double mean_reward = 0.0;
 };
 template <class Env>
-PpoTestResult evaluate_steps(TorchPpo& ppo, Env& env, long steps) {
+[[nodiscard]] PpoTestResult evaluate_steps(TorchPpo& ppo, Env& env, long steps) {
   PpoTestResult out;
   std::vector<float> obs(static_cast<std::size_t>(env.observation_size()));
   std::vector<float> action(static_cast<std::size_t>(env.action_size()));
@@ -227,7 +226,7 @@ struct PpoTaskResult {
 /// is called when a task's episode ends, before the environment is reused (e.g. to read the
 /// environment's min_obstacle_clearance()).
 template <class Env, class Task>
-std::vector<PpoTaskResult> evaluate_tasks(
+[[nodiscard]] std::vector<PpoTaskResult> evaluate_tasks(
     TorchPpo& ppo, std::vector<Env>& envs, const std::vector<Task>& tasks, StepPool* pool,
     const std::function<void(std::size_t, const Env&)>& on_end = nullptr) {
   check_argument(!envs.empty(), "evaluate_tasks", "at least one environment", 0);

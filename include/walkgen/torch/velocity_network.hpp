@@ -19,7 +19,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <string>
-#include <vector>
 
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/robot_io/robot.hpp"

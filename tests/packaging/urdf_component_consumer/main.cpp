@@ -22,7 +22,7 @@ int main() {
     return 1;
   }
   try {
-    walkgen::kinematic_tree_from_urdf("<robot><link name='a'><inertial/></link></robot>");
+    (void)walkgen::kinematic_tree_from_urdf("<robot><link name='a'><inertial/></link></robot>");
   } catch (const walkgen::invalid_argument& e) {
     std::printf("malformed URDF rejected: %s\n", e.what());
     return 0;
