@@ -5,17 +5,22 @@
 //   calibrate_stereo FOLDER [--board 9x6] [--square 0.025] [--out stereo_calibration.yml]
 //                    [--skip-missing] [--rectified PNG]
 //
+//   FOLDER           the folder of left*/right* pairs (must exist)
+//   --board CxR      inner corners of the chessboard, columns x rows (default 9x6)
+//   --square S       the side of a square [m] (default 0.025); sets the unit of T and of depth
+//   --out FILE       the calibration as YAML (default stereo_calibration.yml)
+//   --skip-missing   leave out pairs where a board is not found instead of stopping
+//   --rectified PNG  also write the first pair raw (top) and rectified (bottom) with horizontal
+//                    lines (figure 10.3; docs/img/depth_rectified.png is a copy)
+//
 // Prints each pair's re-projection errors, the per-camera and stereo RMS, the mean epipolar
 // error, the intrinsics, the baseline and the rectified projections, and writes the calibration
 // as YAML (walkgen::save_stereo_calibration; walkgen::load_stereo_calibration reads it back).
-// --board is the count of inner corners (columns x rows), --square the square size in metres,
-// --skip-missing leaves out pairs where a board is not found instead of stopping, --rectified
-// writes the first pair raw (top) and rectified (bottom) with horizontal lines (figure 10.3;
-// docs/img/depth_rectified.png is a copy).
-// Exit code 0, or 1 with the reason on stderr (bad arguments, unreadable images, no board).
+// --help lists the options. Exit code 0; 1 with the reason on stderr (unreadable images, no
+// board, an unwritable file); 2 on a bad command line (one line on stderr).
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -23,16 +28,9 @@
 #include <vector>
 #include <walkgen/opencv/stereo_calibration.hpp>
 
-namespace {
+#include "common/cli.hpp"
 
-int usage(const char* message) {
-  std::fprintf(stderr,
-               "calibrate_stereo: %s\n"
-               "usage: calibrate_stereo FOLDER [--board 9x6] [--square 0.025] [--out FILE] "
-               "[--skip-missing] [--rectified PNG]\n",
-               message);
-  return 1;
-}
+namespace {
 
 void print_matrix(const char* name, const cv::Mat& m) {
   std::printf("%s =", name);
@@ -46,32 +44,50 @@ void print_matrix(const char* name, const cv::Mat& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) return usage("no FOLDER given");
-  const std::filesystem::path folder = argv[1];
+  std::string folder_name;
   walkgen::CalibrationSettings settings;
+  std::string board =
+      std::to_string(settings.board.columns) + "x" + std::to_string(settings.board.rows);
   std::string out = "stereo_calibration.yml";
   std::string rectified_png;
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--skip-missing") {
-      settings.skip_views_without_board = true;
-    } else if (i + 1 < argc && arg == "--board") {
-      if (std::sscanf(argv[++i], "%dx%d", &settings.board.columns, &settings.board.rows) != 2) {
-        return usage("--board expects COLUMNSxROWS of inner corners, e.g. 9x6");
-      }
-    } else if (i + 1 < argc && arg == "--square") {
-      settings.board.square_size = std::atof(argv[++i]);
-    } else if (i + 1 < argc && arg == "--out") {
-      out = argv[++i];
-    } else if (i + 1 < argc && arg == "--rectified") {
-      rectified_png = argv[++i];
-    } else {
-      return usage(("unknown or incomplete argument '" + arg + "'").c_str());
-    }
+
+  CLI::App app{"Calibrates a stereo pair from a folder of chessboard pairs (thesis §3.2, §10.1)",
+               "calibrate_stereo"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("FOLDER", folder_name, "folder of the pairs left<S>.<ext> and right<S>.<ext>")
+      ->required()
+      ->type_name("DIR")
+      ->check(CLI::ExistingDirectory.description(""));
+  const CLI::Validator board_format(
+      [](std::string& value) {
+        int columns = 0, rows = 0;
+        char rest = 0;
+        if (std::sscanf(value.c_str(), "%dx%d%c", &columns, &rows, &rest) != 2 || columns < 2 ||
+            rows < 2) {
+          return "expects COLUMNSxROWS of inner corners (each at least 2), e.g. 9x6, got '" +
+                 value + "'";
+        }
+        return std::string();
+      },
+      "");
+  app.add_option("--board", board, "inner corners of the chessboard, columns x rows")
+      ->type_name("COLUMNSxROWS")
+      ->check(board_format);
+  app.add_option("--square", settings.board.square_size,
+                 "side of a chessboard square [m]; sets the unit of T and of depth")
+      ->check(walkgen_examples::positive);
+  app.add_option("--out", out, "output YAML file of the calibration")->type_name("FILE");
+  app.add_flag("--skip-missing", settings.skip_views_without_board,
+               "leave out pairs where a board is not found instead of stopping");
+  app.add_option("--rectified", rectified_png,
+                 "also write the first pair raw (top) and rectified (bottom) to this PNG "
+                 "(figure 10.3; default: none)")
+      ->type_name("PNG");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  if (std::sscanf(board.c_str(), "%dx%d", &settings.board.columns, &settings.board.rows) != 2) {
+    return 2;  // board_format accepted it: not reached
   }
-  if (!std::filesystem::is_directory(folder)) {
-    return usage(("'" + folder.string() + "' is not a folder").c_str());
-  }
+  const std::filesystem::path folder = folder_name;
 
   // left<S>.<ext> / right<S>.<ext> pairs.
   std::map<std::string, std::string> lefts, rights;

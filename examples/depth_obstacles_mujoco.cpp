@@ -7,18 +7,23 @@
 //
 //   depth_obstacles_mujoco [--out DIR]
 //
-// Writes depth_mujoco.png (left image | exact depth | stereo depth | ground plane from above
+//   --out DIR  output folder, created if missing (default: the working directory)
+//
+// Writes DIR/depth_mujoco.png (left image | exact depth | stereo depth | ground plane from above
 // with the true cylinders in grey and the circles found from stereo depth in red, from exact
 // depth in green); docs/img/depth_mujoco.png is its copy. Prints the depth error per cylinder and
-// the obstacle centres. Exits 1 when rendering is unavailable or an obstacle is missed.
+// the obstacle centres. --help lists the options. Exits 0; 1 when rendering is unavailable, an
+// obstacle is missed or the PNG cannot be written; 2 on a bad command line (one line on stderr).
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 #include <walkgen/mujoco/mujoco_robot.hpp>
 #include <walkgen/opencv/depth_obstacles.hpp>
 #include <walkgen/opencv/stereo_depth.hpp>
+
+#include "common/cli.hpp"
 
 namespace {
 
@@ -39,9 +44,17 @@ cv::Mat colour_depth(const cv::Mat& depth, double max_depth) {
 
 int main(int argc, char** argv) {
   std::string out = ".";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--out") == 0) out = argv[i + 1];
-  }
+  CLI::App app{
+      "Obstacles from stereo depth on the simulated robot's cameras (thesis §10.2, "
+      "eq. 2.79), in MuJoCo",
+      "depth_obstacles_mujoco"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--out", out, "output folder for depth_mujoco.png (created if missing)")
+      ->type_name("DIR");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);  // a failure shows when the PNG is written
+
   walkgen::MujocoRobotSettings settings;
   settings.model_path = std::string(WALKGEN_SOURCE_DIR) + "/tests/opencv/scene_three_cylinders.xml";
   walkgen::MujocoRobot robot(settings);

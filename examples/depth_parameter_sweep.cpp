@@ -7,18 +7,24 @@
 //
 //   depth_parameter_sweep DATA_DIR [--out DIR] [--pad]
 //
-// DATA_DIR holds opencv_aloe_middlebury2006/. Writes depth_sweep_bm.png, depth_sweep_wls.png,
-// depth_sweep_sigma_lambda.png and depth_sweep.csv in DIR (default: the working directory);
-// docs/img/depth_sweep_*.png are their copies. Like the thesis's OpenCV pipeline the sweeps run
-// without walkgen's left padding (StereoDepthSettings::pad_left), so the band of D columns that
-// block matching cannot search shows; --pad turns it on.
+//   DATA_DIR   the folder that holds opencv_aloe_middlebury2006/ (e.g. tests/data)
+//   --out DIR  output folder, created if missing (default: the working directory)
+//   --pad      turn on walkgen's left padding (StereoDepthSettings::pad_left)
+//
+// Writes depth_sweep_bm.png, depth_sweep_wls.png, depth_sweep_sigma_lambda.png and
+// depth_sweep.csv in DIR; docs/img/depth_sweep_*.png are their copies. Like the thesis's OpenCV
+// pipeline the sweeps run without walkgen's left padding, so the band of D columns that block
+// matching cannot search shows; --pad turns it on. --help lists the options. Exits 0; 1 on an
+// unreadable image or an unwritable file; 2 on a bad command line (one line on stderr).
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 #include <walkgen/opencv/stereo_depth.hpp>
+
+#include "common/cli.hpp"
 
 namespace {
 
@@ -55,23 +61,30 @@ cv::Mat grid(const std::vector<std::vector<cv::Mat>>& rows) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: depth_parameter_sweep DATA_DIR [--out DIR] [--pad]\n");
-    return 1;
-  }
+  std::string data_dir;
   std::string out = ".";
   bool pad = false;
-  for (int i = 2; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
-      out = argv[++i];
-    } else if (std::strcmp(argv[i], "--pad") == 0) {
-      pad = true;
-    } else {
-      std::fprintf(stderr, "depth_parameter_sweep: unknown argument '%s'\n", argv[i]);
-      return 1;
-    }
-  }
-  const std::string dir = std::string(argv[1]) + "/opencv_aloe_middlebury2006";
+  CLI::App app{
+      "The depth-map parameter sweeps of thesis §10.2 (figures 10.5-10.6) on Middlebury "
+      "Aloe",
+      "depth_parameter_sweep"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("DATA_DIR", data_dir, "folder that holds opencv_aloe_middlebury2006/")
+      ->required()
+      ->type_name("DIR")
+      ->check(CLI::ExistingDirectory.description(""));
+  app.add_option("--out", out,
+                 "output folder for depth_sweep_{bm,wls,sigma_lambda}.png and depth_sweep.csv "
+                 "(created if missing)")
+      ->type_name("DIR");
+  app.add_flag("--pad", pad,
+               "turn on walkgen's left padding (StereoDepthSettings::pad_left; the thesis's "
+               "OpenCV pipeline has none)");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);  // a failure shows when a file is written
+
+  const std::string dir = data_dir + "/opencv_aloe_middlebury2006";
   cv::Mat left, right, truth;
   try {
     cv::resize(walkgen::read_image(dir + "/aloeL.jpg", cv::IMREAD_COLOR), left, cv::Size(), 0.25,
@@ -90,6 +103,10 @@ int main(int argc, char** argv) {
   const cv::Mat q = walkgen::ideal_disparity_to_depth(k, 0.1);  // any: scores are in pixels
 
   std::ofstream csv(out + "/depth_sweep.csv");
+  if (!csv) {
+    std::fprintf(stderr, "depth_parameter_sweep: cannot write %s/depth_sweep.csv\n", out.c_str());
+    return 1;
+  }
   csv << "figure,wls,block_size,num_disparities,lambda,sigma,bad_fraction,mae_px\n";
   std::printf(
       "Aloe %dx%d, pad_left %s\nfigure  filter  N   D   lambda  sigma  bad [%%]  MAE [px]\n",

@@ -9,7 +9,14 @@
 //
 //   qp_walking_sequence [--ticks N] [--csv FILE] [--png FILE] [--no-plot] [--quiet]
 //
-// Writes FILE.csv (one row per tick) and, when /usr/bin/python3 has matplotlib, FILE.png.
+//   --ticks N    ticks of T = 0.1 s to walk, 1..100000 (default 240: 24 s)
+//   --csv FILE   one row per tick (default qp_walking_sequence.csv)
+//   --png FILE   the plot, when /usr/bin/python3 has matplotlib (default qp_walking_sequence.png)
+//   --no-plot    write the CSV only
+//   --quiet      print only the summary, not a line every 40 ticks
+//
+// --help lists the options. Exits 0; 1 on a failed QP or an unwritable CSV; 2 on a bad command
+// line (one line on stderr). A failed plot is only a warning.
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -21,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "support/walking_qp.hpp"
 #include "walkgen/qp/dense_qp.hpp"
 
@@ -36,56 +44,26 @@ struct Options {
   bool quiet = false;
 };
 
-void usage(const char* argv0) {
-  std::cerr << "usage: " << argv0
-            << " [--ticks N (1..100000, default 240)] [--csv FILE] [--png FILE] [--no-plot]"
-               " [--quiet]\n";
-}
-
-bool parse(int argc, char** argv, Options* opt) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    if (a == "--quiet") {
-      opt->quiet = true;
-    } else if (a == "--no-plot") {
-      opt->plot = false;
-    } else if (a == "--ticks") {
-      const char* v = value();
-      char* end = nullptr;
-      const long n = v ? std::strtol(v, &end, 10) : 0;
-      if (!v || *end != '\0' || n < 1 || n > 100000) {
-        std::cerr << "error: --ticks expects an integer in 1..100000, got '" << (v ? v : "")
-                  << "'\n";
-        return false;
-      }
-      opt->ticks = static_cast<int>(n);
-    } else if (a == "--csv" || a == "--png") {
-      const char* v = value();
-      if (!v) {
-        std::cerr << "error: " << a << " expects a file name\n";
-        return false;
-      }
-      (a == "--csv" ? opt->csv : opt->png) = v;
-    } else if (a == "--help" || a == "-h") {
-      usage(argv[0]);
-      std::exit(0);
-    } else {
-      std::cerr << "error: unknown argument '" << a << "'\n";
-      return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   Options opt;
-  if (!parse(argc, argv, &opt)) {
-    usage(argv[0]);
-    return 2;
-  }
+  CLI::App app{
+      "Solves the walking QP sequence of thesis §2.2 with walkgen's dense QP solver and "
+      "plots the walk",
+      "qp_walking_sequence"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--ticks", opt.ticks, "ticks to walk, one QP each [ticks of 0.1 s]")
+      ->type_name("N")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--csv", opt.csv, "output CSV file, one row per tick")->type_name("FILE");
+  app.add_option("--png", opt.png, "output plot (needs /usr/bin/python3 with matplotlib)")
+      ->type_name("FILE");
+  bool no_plot = false;
+  app.add_flag("--no-plot", no_plot, "write the CSV only");
+  app.add_flag("--quiet", opt.quiet, "print only the summary, not a line every 40 ticks");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  opt.plot = !no_plot;
 
   Seq seq;
   walkgen::DenseQp<double> qp(Seq::kVars, Seq::kRows);

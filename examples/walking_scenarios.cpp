@@ -3,13 +3,18 @@
 // sequence and obstacle avoidance, each for 200 ticks of WalkingMpc<double, 16>
 // (tests/support/walking_scenarios.hpp), and plots each walk from above.
 //
-//   walking_scenarios [scenario|all] [--out DIR] [--no-plot]
+//   walking_scenarios [SCENARIO] [--out DIR] [--no-plot]
+//
+//   SCENARIO    straight, sideways, curved, turn, sequence, obstacle or all (default: all)
+//   --out DIR   output folder, created if missing (default: the working directory)
+//   --no-plot   write the CSV files only
 //
 // For each scenario NAME it writes DIR/NAME.csv (the interpolated trajectory, thesis column
 // order), DIR/NAME_footsteps.csv (time,foot,x,y,q of every landing, initial feet first),
 // DIR/NAME_meta.csv (key,value: foot and margin sizes, command period, obstacles) and, unless
 // --no-plot, DIR/NAME.png through python/plot_walking.py (needs /usr/bin/python3 with
-// matplotlib). Exits non-zero on bad arguments, a failed QP or a failed plot.
+// matplotlib). --help lists the options. Exits 0; 1 on a failed QP, file or plot; 2 on a bad
+// command line (one line on stderr).
 
 #include <cmath>
 #include <cstdio>
@@ -20,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "support/walking_scenarios.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/mpc/settings.hpp"
@@ -31,56 +37,6 @@ struct Options {
   std::string out = ".";
   bool plot = true;
 };
-
-void usage(const char* argv0) {
-  std::cerr << "usage: " << argv0 << " [scenario|all] [--out DIR] [--no-plot]\n  scenarios:";
-  for (const auto& s : walkgen_test::walking_scenarios()) std::cerr << ' ' << s.name;
-  std::cerr << "\n";
-}
-
-bool known(const std::string& name) {
-  for (const auto& s : walkgen_test::walking_scenarios()) {
-    if (s.name == name) return true;
-  }
-  return name == "all";
-}
-
-bool parse_args(int argc, char** argv, Options* opt) {
-  bool have_scenario = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--no-plot") {
-      opt->plot = false;
-    } else if (a == "--out") {
-      if (i + 1 >= argc) {
-        std::cerr << "error: --out expects a directory\n";
-        return false;
-      }
-      opt->out = argv[++i];
-    } else if (a == "--help" || a == "-h") {
-      usage(argv[0]);
-      std::exit(0);
-    } else if (!a.empty() && a[0] != '-' && !have_scenario) {
-      if (!known(a)) {
-        std::cerr << "error: unknown scenario '" << a << "'\n";
-        return false;
-      }
-      opt->scenario = a;
-      have_scenario = true;
-    } else {
-      std::cerr << "error: unexpected argument '" << a << "'\n";
-      return false;
-    }
-  }
-  return true;
-}
-
-/// Parses the arguments; prints the error and the usage when they are bad.
-bool parse(int argc, char** argv, Options* opt) {
-  if (parse_args(argc, argv, opt)) return true;
-  usage(argv[0]);
-  return false;
-}
 
 bool open(const std::string& path, std::ofstream* os) {
   os->open(path);
@@ -170,7 +126,25 @@ bool walk(const walkgen_test::Scenario& sc, const Options& opt) {
 
 int main(int argc, char** argv) {
   Options opt;
-  if (!parse(argc, argv, &opt)) return 2;
+  std::vector<std::string> names;
+  for (const auto& sc : walkgen_test::walking_scenarios()) names.push_back(sc.name);
+  names.push_back("all");
+
+  CLI::App app{"Walks the HRP-2 scenarios of thesis §9.1 (figures 9.1-9.3): CSV files and plots",
+               "walking_scenarios"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("SCENARIO", opt.scenario, "the scenario to walk (200 ticks of 0.1 s), or all")
+      ->check(CLI::IsMember(names));
+  app.add_option("--out", opt.out,
+                 "output folder for NAME.csv, NAME_footsteps.csv, NAME_meta.csv and NAME.png "
+                 "(created if missing)")
+      ->type_name("DIR");
+  bool no_plot = false;
+  app.add_flag("--no-plot", no_plot,
+               "write the CSV files only (plotting needs /usr/bin/python3 with matplotlib)");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  opt.plot = !no_plot;
+
   std::error_code ec;
   std::filesystem::create_directories(opt.out, ec);  // a failure shows when a file is opened
   bool ok = true;

@@ -6,10 +6,11 @@
 //      scenario;
 //   3. beta: ZMP distance from the support foot's centre against velocity tracking.
 //
-//   walking_tuning
+//   walking_tuning            (no options besides --help and --version)
 //
 // Each run is 200 ticks of WalkingMpc (tests/support/walking_scenarios.hpp); the velocity is
-// walkgen_test::mean_velocity over ticks 88–200, as in tests/mpc/test_walking_mpc.cpp.
+// walkgen_test::mean_velocity over ticks 88–200, as in tests/mpc/test_walking_mpc.cpp. --help
+// prints the usage; any other argument exits 2 with one line on stderr.
 
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "support/walking_scenarios.hpp"
 #include "walkgen/mpc/settings.hpp"
 
@@ -118,11 +120,13 @@ void beta_table() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1) {
-    std::fprintf(stderr, "usage: %s   (no arguments: prints the tables of docs/tuning.md)\n",
-                 argv[0]);
-    return 2;
-  }
+  CLI::App app{
+      "Prints the tables of docs/tuning.md: what step_velocity_weight, the horizon N and "
+      "beta do to the HRP-2 walks of thesis §9.1",
+      "walking_tuning"};
+  walkgen_examples::cli_defaults(app);
+  WALKGEN_CLI_PARSE(app, argc, argv);  // no options: --help, --version, unknown ones rejected
+
   std::printf("HRP-2 preset, 200 ticks per run; velocity = (v_x [m/s], v_y [m/s], w [rad/s])\n\n");
   step_velocity_table();
   horizon_table();

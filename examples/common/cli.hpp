@@ -1,0 +1,87 @@
+// The command-line conventions of walkgen's example programs, on top of CLI11.
+//
+//   CLI::App app{"what the program does (thesis section)", "program_name"};
+//   walkgen_examples::cli_defaults(app);        // every option shows its default in --help
+//   app.add_option("--out", out_dir, "output folder")->capture_default_str();
+//   WALKGEN_CLI_PARSE(app, argc, argv);         // --help: usage, exit 0; a bad option: one line,
+//   exit 2
+//
+// Units belong in the option's description ("[m/s]", "[s]"), ranges in a validator
+// (walkgen_examples::positive / non_negative below, CLI::Range, CLI::ExistingDirectory,
+// CLI::IsMember).
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "walkgen/version.hpp"
+
+namespace walkgen_examples {
+
+/// Footer and defaults shared by every example: defaults printed in --help, options may follow
+/// positional arguments.
+inline void cli_defaults(CLI::App& app) {
+  app.option_defaults()->always_capture_default();
+  app.set_version_flag("--version", std::string("walkgen ") + walkgen::kVersion);
+  app.get_formatter()->column_width(36);
+  app.footer("Part of walkgen's examples (docs/getting-started.md lists them all).");
+}
+
+/// Validators with readable messages (CLI::PositiveNumber of CLI11 2.1 prints the range up to
+/// 1.8e308): `->check(walkgen_examples::positive)`.
+inline const CLI::Validator positive(
+    [](std::string& in) -> std::string {
+      double v = 0.0;
+      if (!CLI::detail::lexical_cast(in, v) || !(v > 0.0)) return "must be > 0, got " + in;
+      return {};
+    },
+    "POSITIVE", "positive");
+inline const CLI::Validator non_negative(
+    [](std::string& in) -> std::string {
+      double v = 0.0;
+      if (!CLI::detail::lexical_cast(in, v) || !(v >= 0.0)) return "must be >= 0, got " + in;
+      return {};
+    },
+    "NONNEGATIVE", "non_negative");
+
+/// Parses the command line. Returns -1 when the program should go on; otherwise the exit status:
+/// 0 after --help (usage on stdout), 2 after a parse error (one line on stderr naming the program,
+/// the problem and --help).
+inline int cli_parse(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
+    return 0;
+  } catch (const CLI::CallForVersion& e) {
+    std::printf("%s\n", e.what());
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    // CLI11 checks required arguments before unknown ones; an unknown option is the better news.
+    std::string message = e.what();
+    const std::vector<std::string> extra = app.remaining();
+    if (!extra.empty() && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+      message = "unknown argument(s):";
+      for (const auto& a : extra) message += " " + a;
+    }
+    std::fprintf(stderr, "%s: %s (see %s --help)\n", app.get_name().c_str(), message.c_str(),
+                 app.get_name().c_str());
+    return 2;
+  }
+  return -1;
+}
+
+}  // namespace walkgen_examples
+
+/// Parses argv into `app` and returns from main() on --help (0) or a bad command line (2).
+#define WALKGEN_CLI_PARSE(app, argc, argv)                                      \
+  do {                                                                          \
+    const int walkgen_cli_rc_ = ::walkgen_examples::cli_parse(app, argc, argv); \
+    if (walkgen_cli_rc_ >= 0) return walkgen_cli_rc_;                           \
+  } while (false)
