@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
   libtinyxml2-dev libmujoco-dev libceres-dev liborocos-kdl-dev
-  libegl-dev libegl-mesa0 libgl1-mesa-dri zlib1g-dev libopencv-dev libopencv-contrib-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libopencv-dev libopencv-contrib-dev
   libtorch-dev python3-torch
   libcli11-dev shellcheck
   ffmpeg tmux clang-format python3-numpy python3-matplotlib
