@@ -3,37 +3,49 @@
 // its chest cameras (left RGB + WLS disparity, one frame per NMPC tick), in held-out random rooms
 // of each task; or, with --expert, the scripted expert that recorded the demonstrations.
 //
-//   bc_evaluate (--model FILE | --expert) [--tasks LIST] [--layouts N] [--seed S] [--out DIR]
-//               [--require-reached]
-//     --tasks    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
-//     --layouts  rooms per task (default 20), seeds S, S+1, ... (default 900000: not recorded)
-//     --time-limit T  simulated seconds per episode (default: from the room)
+//   bc_evaluate (--model FILE | --expert) [--tasks LIST] [--layouts N] [--seed S]
+//               [--time-limit T] [--handover T] [--dagger DIR] [--out DIR] [--require-reached]
+//     --model FILE    the TorchScript network (an existing file)
+//     --expert        the scripted expert instead (excludes --model)
+//     --tasks LIST    comma-separated (default: straight,curved,obstacle,scan,dynamic,distractor)
+//     --layouts N     rooms per task, >= 1 (default 20), seeds S, S+1, ...
+//     --seed S        the first room's seed (default 900000: not recorded)
+//     --time-limit T  simulated seconds per episode [s], >= 0 (default 0: from the room)
 //     --handover T    the network (with --expert: a blind walk straight ahead, into the chair of
-//                     an obstacle room) drives for T simulated seconds, then the expert (does the
-//                     expert, which DAgger asks for labels there, recover from such states?)
+//                     an obstacle room) drives for T simulated seconds [s], then the expert (does
+//                     the expert, which DAgger asks for labels there, recover from such states?)
 //     --dagger DIR    with --model: record what the robot sees while the network drives, labelled
 //                     with the expert's commands (DAgger, against the drift of plain cloning)
+//     --out DIR       where the CSV files go, created if missing (default .)
 //     --require-reached  exit status 1 when an episode did not reach its target (always so
 //                     with --expert: the expert is the baseline every room must be solvable by)
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help prints every option with
+// its default.
 // Writes DIR/bc_evaluation.csv (one line per episode: task, seed, reached, collided, fell, time,
 // final distance, NMPC vs measured ZMP mean, command entropy (eq. 9.1), inference ms per frame,
 // the target's and the chair's place)
 // and DIR/bc_paths.csv (one line per tick: task, seed, time, the generator's planar pose, the
 // command; python/plot_bc_evaluation.py --paths draws them in their rooms), and prints the
-// success rate per task. Exit status: 2 for bad arguments; 1 with --require-reached (or
-// --expert) when an episode did not reach its target; else 0.
+// success rate per task. Exit status: 2 for a bad command line (one line on stderr) or a model
+// that does not load; 1 with --require-reached (or --expert) when an episode did not reach its
+// target; else 0.
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "support/navigation_episode.hpp"
 #include "walkgen/torch/velocity_network.hpp"
 
@@ -64,45 +76,55 @@ int main(int argc, char** argv) {
   std::string dagger;            // record the expert's labels of the network's states here
   int layouts = 20;
   std::uint32_t seed = 900000;
-  std::vector<walkgen::NavigationTask> tasks = walkgen::all_navigation_tasks();
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "--model" && i + 1 < argc) {
-        model = argv[++i];
-      } else if (a == "--expert") {
-        expert = true;
-      } else if (a == "--require-reached") {
-        require_reached = true;
-      } else if (a == "--layouts" && i + 1 < argc) {
-        layouts = std::atoi(argv[++i]);
-      } else if (a == "--seed" && i + 1 < argc) {
-        seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
-      } else if (a == "--time-limit" && i + 1 < argc) {
-        time_limit = std::atof(argv[++i]);
-      } else if (a == "--handover" && i + 1 < argc) {
-        handover = std::atof(argv[++i]);
-      } else if (a == "--dagger" && i + 1 < argc) {
-        dagger = argv[++i];
-      } else if (a == "--out" && i + 1 < argc) {
-        out = argv[++i];
-      } else if (a == "--tasks" && i + 1 < argc) {
-        tasks = walkgen::navigation_tasks_from_list(argv[++i]);
-      } else {
-        throw walkgen::invalid_argument("unknown argument '" + a + "'");
-      }
-    }
-    if (model.empty() == !expert || layouts < 1 || tasks.empty()) {
-      throw walkgen::invalid_argument("give --model FILE or --expert, and --layouts >= 1");
-    }
-  } catch (const walkgen::invalid_argument& e) {
-    std::fprintf(
-        stderr,
-        "bc_evaluate: %s\nusage: bc_evaluate (--model FILE | --expert) [--tasks LIST] "
-        "[--layouts N] [--seed S] [--time-limit T] [--handover T] [--dagger DIR] [--out DIR] "
-        "[--require-reached]\n",
-        e.what());
-    return 2;
+  std::vector<std::string> task_names;
+  for (walkgen::NavigationTask t : walkgen::all_navigation_tasks()) {
+    task_names.emplace_back(walkgen::to_string(t));
+  }
+  const std::vector<std::string> all_task_names = task_names;
+  CLI::App app{
+      "Behavioural cloning in the loop: the trained network (or the scripted expert) "
+      "walks the humanoid through held-out random rooms (thesis §11.1.2)",
+      "bc_evaluate"};
+  walkgen_examples::cli_defaults(app);
+  CLI::Option* model_option =
+      app.add_option("--model", model,
+                     "the network that drives (bc_train.py's model.pt); or --expert")
+          ->check(CLI::ExistingFile);
+  CLI::Option* expert_option =
+      app.add_flag("--expert", expert, "the scripted expert drives instead (the baseline)");
+  model_option->excludes(expert_option);
+  app.add_option("--tasks", task_names, "comma-separated room tasks")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember(all_task_names))
+      ->default_str(CLI::detail::join(all_task_names, ","));
+  app.add_option("--layouts", layouts, "rooms per task, >= 1: seeds --seed, --seed + 1, ...")
+      ->check(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--seed", seed, "the first room's seed (default: none recorded)")
+      ->check(walkgen_examples::decimal_at_least<std::uint32_t>(0));
+  app.add_option("--time-limit", time_limit,
+                 "simulated time per episode [s], >= 0; 0: the room's own")
+      ->check(walkgen_examples::non_negative);
+  app.add_option("--handover", handover,
+                 "the expert takes over after this time [s], >= 0 (default: none)")
+      ->check(walkgen_examples::non_negative)
+      ->default_str("");
+  app.add_option("--dagger", dagger,
+                 "DAgger: record the network's states with the expert's commands into this "
+                 "folder (default: none)")
+      ->needs(model_option);
+  app.add_option("--out", out, "folder of bc_evaluation.csv and bc_paths.csv");
+  app.add_flag("--require-reached", require_reached,
+               "exit status 1 when a room's target is not reached (as --expert)");
+  // Here rather than an option group that requires one: an unknown option is reported first
+  // (CLI11 checks required options before the unknown ones).
+  app.callback([&] {
+    if (model.empty() && !expert) throw CLI::RequiredError("--model FILE or --expert");
+  });
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  std::vector<walkgen::NavigationTask> tasks;
+  for (const std::string& name : task_names) {
+    tasks.push_back(walkgen::navigation_task_from_string(name));
   }
   std::unique_ptr<walkgen::VelocityNetwork> network;
   if (!expert) {

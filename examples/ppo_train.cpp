@@ -11,20 +11,37 @@
 // --policy FILE skips the training and tests a saved policy. --plot draws the PNGs through
 // python/plot_learning.py.
 //
-// Options: --epochs E --steps S (per epoch) --seed N --out DIR --envs K --threads T
-//          --obstacles K --policy FILE --test-runs R --test-goals G --plot --quiet
-
+// Options (CLI11, examples/common/cli.hpp; --help lists them with their defaults):
+//   --epochs E      training epochs, >= 1 (default 50 for benchmark, 30 for nmpc)
+//   --steps S       environment steps per epoch, >= 1 (default 10000 benchmark, 8192 nmpc)
+//   --seed N        seed of the policy and the training environments (default 1)
+//   --out DIR       output folder, created if missing (default .)
+//   --envs K        environments stepped at once, >= 1 (default 8)
+//   --threads T     nmpc: threads that step them, >= 1 (default 2)
+//   --obstacles K   nmpc: circular obstacles per episode, >= 0 (default 0)
+//   --policy FILE   test this saved policy (an existing file) instead of training
+//   --test-runs R   benchmark: test runs of 10 000 steps, >= 1 (default 10)
+//   --test-goals G  nmpc: held-out test goals, >= 1 (default 100)
+//   --plot          draw the PNGs (python/plot_learning.py)
+//   --quiet         no line per epoch
+// A bad command line exits 2 with one line on stderr.
 #include <torch/torch.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "walkgen/torch/environment.hpp"
 #include "walkgen/torch/nmpc_environment.hpp"
 #include "walkgen/torch/parallel.hpp"
@@ -48,55 +65,6 @@ struct Options {
   bool plot = false;
   bool quiet = false;
 };
-
-[[noreturn]] void usage(const std::string& error) {
-  std::cerr << "ppo_train: " << error
-            << "\nusage: ppo_train benchmark|nmpc [--epochs E] [--steps S] [--seed N] [--out DIR]"
-               " [--envs K] [--threads T] [--obstacles K] [--policy FILE] [--test-runs R]"
-               " [--test-goals G] [--plot] [--quiet]\n";
-  std::exit(2);
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  if (argc < 2) usage("missing environment");
-  o.env = argv[1];
-  if (o.env != "benchmark" && o.env != "nmpc") usage("unknown environment " + o.env);
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--epochs")
-      o.epochs = std::stoi(value());
-    else if (a == "--steps")
-      o.steps = std::stol(value());
-    else if (a == "--seed")
-      o.seed = std::stoull(value());
-    else if (a == "--out")
-      o.out = value();
-    else if (a == "--envs")
-      o.envs = std::stoi(value());
-    else if (a == "--threads")
-      o.threads = std::stoi(value());
-    else if (a == "--obstacles")
-      o.obstacles = std::stoi(value());
-    else if (a == "--policy")
-      o.policy = value();
-    else if (a == "--test-runs")
-      o.test_runs = std::stoi(value());
-    else if (a == "--test-goals")
-      o.test_goals = std::stoi(value());
-    else if (a == "--plot")
-      o.plot = true;
-    else if (a == "--quiet")
-      o.quiet = true;
-    else
-      usage("unknown option " + a);
-  }
-  return o;
-}
 
 std::string env_name(const Options& o) {
   return o.env == "nmpc" && o.obstacles > 0 ? "nmpc_obstacles" : o.env;
@@ -283,10 +251,11 @@ int run_nmpc(const Options& o) {
       obst << c << ',' << ob.x << ',' << ob.y << ',' << ob.radius << ',' << ob.margin << '\n';
     }
     env.reset(task);
-    float obs[64], act[2];
+    std::vector<float> obs(static_cast<std::size_t>(obs_size));  // 2 + 3 per obstacle
+    float act[2];
     for (;;) {
-      env.observe(obs);
-      ppo.act(obs, 1, true, act);
+      env.observe(obs.data());
+      ppo.act(obs.data(), 1, true, act);
       const Eigen::Vector3d cmd = env.command_of(act);
       const auto r = env.step(act);
       const auto& st = env.mpc().state();
@@ -307,11 +276,45 @@ int run_nmpc(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  Options o;
+  CLI::App app{
+      "Trains and tests PPO agents (walkgen::TorchPpo) in the benchmarking or the NMPC "
+      "environment (thesis §11.2)",
+      "ppo_train"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("env", o.env, "benchmark (§11.2.1) or nmpc (§11.2.2)")
+      ->required()
+      ->check(CLI::IsMember({"benchmark", "nmpc"}));
+  app.add_option("--epochs", o.epochs, "training epochs, >= 1 (default: benchmark 50, nmpc 30)")
+      ->check(walkgen_examples::decimal_at_least<int>(1))
+      ->default_str("");
+  app.add_option("--steps", o.steps, "steps per epoch, >= 1 (default: benchmark 10000, nmpc 8192)")
+      ->check(walkgen_examples::decimal_at_least<long>(1))
+      ->default_str("");
+  app.add_option("--seed", o.seed, "seed of the policy and the training environments")
+      ->check(walkgen_examples::decimal_at_least<std::uint64_t>(0));
+  app.add_option("--out", o.out, "folder of the CSV files and the policy (ppo_<env>.pt)");
+  app.add_option("--envs", o.envs, "environments stepped at once, >= 1")
+      ->check(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--threads", o.threads, "nmpc: threads that step the environments, >= 1")
+      ->check(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--obstacles", o.obstacles, "nmpc: circular obstacles per episode, >= 0")
+      ->check(walkgen_examples::decimal_at_least<int>(0));
+  app.add_option("--policy", o.policy,
+                 "test this saved policy instead of training one (default: none)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--test-runs", o.test_runs, "benchmark: test runs of 10000 steps, >= 1")
+      ->check(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--test-goals", o.test_goals, "nmpc: held-out test goals, >= 1")
+      ->check(walkgen_examples::decimal_at_least<int>(1));
+  app.add_flag("--plot", o.plot, "draw the PNGs (python/plot_learning.py)");
+  app.add_flag("--quiet", o.quiet, "no line per epoch");
+  WALKGEN_CLI_PARSE(app, argc, argv);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines also when piped to a file
   torch::set_num_threads(1);  // small networks: intra-op threads cost more than they give
   int rc = 0;
   try {
+    std::filesystem::create_directories(o.out);
     rc = o.env == "benchmark" ? run_benchmark(o) : run_nmpc(o);
   } catch (const std::exception& e) {
     std::cerr << "ppo_train: " << e.what() << '\n';

@@ -4,59 +4,68 @@
 // the left RGB image, the WLS disparity of the chest stereo pair and the command are recorded
 // (walkgen::DemonstrationRecorder: PNG files and index.txt).
 //
-//   record_demonstrations --out DIR [--episodes N] [--seed S] [--tasks LIST]
-//     --episodes N  episodes, cycling through the tasks (default 6)
+//   record_demonstrations --out DIR [--episodes N] [--seed S] [--tasks LIST] [--noise W]
+//     --out DIR     the dataset folder (required; episodes are added to its index.txt)
+//     --episodes N  episodes, >= 1, cycling through the tasks (default 6)
 //     --seed S      seed of the first layout; episode e uses S + e (default 1000)
 //     --tasks LIST  comma-separated: straight,curved,obstacle,scan,dynamic,distractor (default all)
 //     --noise W     in every other episode, the robot executes the expert's command plus a
 //                   random turn rate (normal, W rad/s, a new one every 2 s) while the expert's
 //                   own command is recorded: states off the expert's path, labelled with the way
-//                   back (DART, Laskey et al. 2017; against the drift of plain cloning). Default 0.
+//                   back (DART, Laskey et al. 2017; against the drift of plain cloning).
+//                   In [0, 1) rad/s; default 0.
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help prints every option with
+// its default; an unknown option or a bad value exits 2 with one line on stderr.
 // Prints one line per episode and a summary; exit status 0 when every episode reached its target.
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "support/navigation_episode.hpp"
+
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   std::string out;
   int episodes = 6;
   std::uint32_t seed = 1000;
   double noise = 0.0;
-  std::vector<walkgen::NavigationTask> tasks = walkgen::all_navigation_tasks();
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "--out" && i + 1 < argc) {
-        out = argv[++i];
-      } else if (a == "--episodes" && i + 1 < argc) {
-        episodes = std::atoi(argv[++i]);
-      } else if (a == "--seed" && i + 1 < argc) {
-        seed = std::uint32_t(std::strtoul(argv[++i], nullptr, 10));
-      } else if (a == "--noise" && i + 1 < argc) {
-        noise = std::atof(argv[++i]);
-      } else if (a == "--tasks" && i + 1 < argc) {
-        tasks = walkgen::navigation_tasks_from_list(argv[++i]);
-      } else {
-        throw walkgen::invalid_argument("unknown argument '" + a + "'");
-      }
-    }
-  } catch (const walkgen::invalid_argument& e) {
-    std::fprintf(stderr,
-                 "record_demonstrations: %s\nusage: record_demonstrations --out DIR [--episodes N] "
-                 "[--seed S] [--tasks straight,curved,...]\n",
-                 e.what());
-    return 2;
+  std::vector<std::string> task_names;
+  for (walkgen::NavigationTask t : walkgen::all_navigation_tasks()) {
+    task_names.emplace_back(walkgen::to_string(t));
   }
-  if (out.empty() || episodes < 1 || tasks.empty() || !(noise >= 0.0 && noise < 1.0)) {
-    std::fprintf(stderr,
-                 "record_demonstrations: --out DIR, --episodes >= 1 and 0 <= --noise < 1 "
-                 "rad/s are required\n");
-    return 2;
+  const std::vector<std::string> all_task_names = task_names;
+  CLI::App app{
+      "Demonstrations for behavioural cloning: the scripted expert walks the humanoid "
+      "through random rooms, recorded per NMPC tick (thesis §7.1, §11.1.1)",
+      "record_demonstrations"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--out", out, "the dataset folder (episodes are added to it)")->required();
+  app.add_option("--episodes", episodes, "episodes, >= 1, cycling through the tasks")
+      ->check(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--seed", seed, "the first room's seed; episode e uses seed + e")
+      ->check(walkgen_examples::decimal_at_least<std::uint32_t>(0));
+  app.add_option("--tasks", task_names, "comma-separated room tasks")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember(all_task_names))
+      ->default_str(CLI::detail::join(all_task_names, ","));
+  app.add_option("--noise", noise,
+                 "DART: every other episode adds a random turn rate, sigma [rad/s] in [0, 1)")
+      ->check(walkgen_examples::number_where("in [0, 1) [rad/s]",
+                                             [](double v) { return v >= 0.0 && v < 1.0; }));
+  WALKGEN_CLI_PARSE(app, argc, argv);
+  std::vector<walkgen::NavigationTask> tasks;
+  for (const std::string& name : task_names) {
+    tasks.push_back(walkgen::navigation_task_from_string(name));
   }
   int reached = 0;
   long frames = 0;

@@ -7,18 +7,20 @@
 //
 //   teleop [--speed S] [--record FILE] [--max-time T] [--summary FILE]
 //          [--room TASK [--seed S] [--demonstrations DIR]]
-//     --speed S     simulated seconds per wall-clock second (default 1: real time)
+//     --speed S     simulated seconds per wall-clock second, in (0, 1000] (default 1: real time)
 //     --record FILE CSV: wall_time, sim_time, v_x, v_y, omega, key (default teleop_commands.csv)
-//     --max-time T  stop after T simulated seconds (default: until q)
+//     --max-time T  stop after T simulated seconds [s], > 0 (default: until q)
 //     --summary FILE  a few key=value lines at the end (distance walked, status, rows)
 //     --room TASK   walk in the room walkgen::make_navigation_scene(TASK, S) (straight, curved,
 //                   obstacle, scan, dynamic, distractor): walls, target, chairs and the person
 //                   (moved each tick) in MuJoCo, chairs and person as NMPC obstacles; stops when
 //                   the true CoM is within 0.3 m of the target
-//     --seed S      the room's layout (default 1000)
+//     --seed S      the room's layout, a decimal integer in 0..4294967295 (default 1000)
 //     --demonstrations DIR  every NMPC tick, the left RGB image, the WLS disparity of the chest
 //                   stereo pair and the executed command into DIR (walkgen::DemonstrationRecorder,
 //                   episode "<task>_<seed>_teleop"); needs --room and a build with walkgen::opencv
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help prints every option with
+// its default and exits 0; an unknown option or a bad value exits 2 with one line on stderr.
 //
 // Keys: Up/w faster, Down/s slower (v_x ± 0.005 m/s), Left/a turn left, Right/d turn right
 // (ω ± 0.015 rad/s), z/c sideways left/right (v_y ± 0.0015 m/s), space stop, q quit.
@@ -26,6 +28,8 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -33,10 +37,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
+#include <type_traits>
+#include <vector>
 
+#include "common/cli.hpp"
 #include "support/simulated_tasks.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS  // examples/CMakeLists.txt: teleop links walkgen::opencv
@@ -44,11 +52,6 @@
 #endif
 
 namespace {
-
-const char* const kUsage =
-    "usage: teleop [--speed S] [--record FILE] [--max-time T] [--summary FILE]\n"
-    "              [--room straight|curved|obstacle|scan|dynamic|distractor [--seed S]\n"
-    "               [--demonstrations DIR]]\n";
 
 /// Reached: the true CoM this close to the room's target [m] (as run_navigation_episode).
 constexpr double kRoomReachDistance = 0.3;
@@ -165,55 +168,42 @@ void parse_keys(const std::string& in, OnKey on_key) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  double speed = 1.0, max_time = 1e18;
+  double speed = 1.0, max_time = std::numeric_limits<double>::infinity();
   std::string record = "teleop_commands.csv", summary_path, room, demonstrations;
   std::uint32_t seed = 1000;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--speed" && i + 1 < argc) {
-      speed = std::atof(argv[++i]);
-    } else if (a == "--record" && i + 1 < argc) {
-      record = argv[++i];
-    } else if (a == "--max-time" && i + 1 < argc) {
-      max_time = std::atof(argv[++i]);
-    } else if (a == "--summary" && i + 1 < argc) {
-      summary_path = argv[++i];
-    } else if (a == "--room" && i + 1 < argc) {
-      room = argv[++i];
-    } else if (a == "--seed" && i + 1 < argc) {
-      char* end = nullptr;
-      const std::string value = argv[++i];
-      const unsigned long s = std::strtoul(value.c_str(), &end, 10);
-      if (value.empty() || *end != '\0' || value[0] == '-' || s > 0xffffffffUL) {
-        std::fprintf(stderr, "teleop: --seed expects an integer in 0..4294967295, got '%s'\n",
-                     value.c_str());
-        return 2;
-      }
-      seed = std::uint32_t(s);
-    } else if (a == "--demonstrations" && i + 1 < argc) {
-      demonstrations = argv[++i];
-    } else {
-      std::fprintf(stderr, "teleop: unknown argument '%s'\n%s", a.c_str(), kUsage);
-      return 2;
-    }
+  std::vector<std::string> rooms;
+  for (walkgen::NavigationTask t : walkgen::all_navigation_tasks()) {
+    rooms.emplace_back(walkgen::to_string(t));
   }
-  if (!(speed > 0.0 && speed <= 1000.0) || !(max_time > 0.0)) {
-    std::fprintf(stderr, "teleop: --speed expects (0, 1000], --max-time a time > 0\n");
-    return 2;
-  }
+  CLI::App app{
+      "Keyboard teleoperation of the humanoid in MuJoCo, in the terminal (thesis §8, "
+      "appendix B.3.1)",
+      "teleop"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--speed", speed, "simulated s per wall-clock s, in (0, 1000]; 1: real time")
+      ->check(walkgen_examples::number_where("in (0, 1000]",
+                                             [](double v) { return v > 0.0 && v <= 1000.0; }));
+  app.add_option("--record", record, "CSV, a line per NMPC tick: times [s], command, keys");
+  app.add_option("--max-time", max_time,
+                 "stop after this simulated time [s], > 0 (default: none, until q)")
+      ->check(walkgen_examples::positive)
+      ->default_str("");
+  app.add_option("--summary", summary_path,
+                 "key=value lines at the end: status, pose [m, rad], ... (default: none)");
+  CLI::Option* room_option =
+      app.add_option("--room", room,
+                     "walk in this room (§11.1) until 0.3 m from its target (default: none)")
+          ->check(CLI::IsMember(rooms));
+  app.add_option("--seed", seed, "the room's layout, 0..4294967295")
+      ->check(walkgen_examples::decimal_at_least<std::uint32_t>(0));
+  app.add_option("--demonstrations", demonstrations,
+                 "record image, disparity, command per tick into this folder (default: none)")
+      ->needs(room_option);
+  WALKGEN_CLI_PARSE(app, argc, argv);
   // The room (--room), and the demonstrations recorded in it (--demonstrations).
   std::optional<walkgen::NavigationScene> scene;
   if (!room.empty()) {
-    try {
-      scene = walkgen::make_navigation_scene(walkgen::navigation_task_from_string(room), seed);
-    } catch (const walkgen::invalid_argument& e) {
-      std::fprintf(stderr, "teleop: --room: %s\n%s", e.what(), kUsage);
-      return 2;
-    }
-  }
-  if (!demonstrations.empty() && !scene) {
-    std::fprintf(stderr, "teleop: --demonstrations DIR needs --room TASK\n%s", kUsage);
-    return 2;
+    scene = walkgen::make_navigation_scene(walkgen::navigation_task_from_string(room), seed);
   }
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS
   std::optional<walkgen::DemonstrationRecorder> recorder;
@@ -362,7 +352,11 @@ int main(int argc, char** argv) {
       frames = recorder->samples();
     }
 #endif
-    loop.set_command(command);
+    const walkgen::CommandStatus accepted = loop.set_command(command);
+    if (accepted != walkgen::CommandStatus::accepted) {  // cannot be: clamped to 95 % above
+      stop_message = std::string("the NMPC rejected the command: ") + walkgen::to_string(accepted);
+      break;
+    }
     const walkgen::LoopTick& tick = loop.tick();
     status = tick.status;
     for (const auto& s : loop.samples()) {

@@ -11,8 +11,13 @@
 // CLI::IsMember).
 #pragma once
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -30,22 +35,47 @@ inline void cli_defaults(CLI::App& app) {
   app.footer("Part of walkgen's examples (docs/getting-started.md lists them all).");
 }
 
-/// Validators with readable messages (CLI::PositiveNumber of CLI11 2.1 prints the range up to
-/// 1.8e308): `->check(walkgen_examples::positive)`.
-inline const CLI::Validator positive(
-    [](std::string& in) -> std::string {
-      double v = 0.0;
-      if (!CLI::detail::lexical_cast(in, v) || !(v > 0.0)) return "must be > 0, got " + in;
-      return {};
-    },
-    "POSITIVE", "positive");
-inline const CLI::Validator non_negative(
-    [](std::string& in) -> std::string {
-      double v = 0.0;
-      if (!CLI::detail::lexical_cast(in, v) || !(v >= 0.0)) return "must be >= 0, got " + in;
-      return {};
-    },
-    "NONNEGATIVE", "non_negative");
+/// CLI11 validator: a number for which ok() holds; `what` ("> 0") names the condition in the
+/// error line (the option's description names it in --help). CLI::PositiveNumber of CLI11 2.1
+/// prints its range up to 1.8e308 instead.
+inline CLI::Validator number_where(const char* what, bool (*ok)(double)) {
+  return CLI::Validator(
+      [what, ok](std::string& s) -> std::string {
+        double v = 0.0;
+        if (CLI::detail::lexical_cast(s, v) && ok(v)) return {};
+        return std::string("expected a number ") + what + ", got '" + s + "'";
+      },
+      "");
+}
+
+/// `->check(walkgen_examples::positive)`, `->check(walkgen_examples::non_negative)`.
+inline const CLI::Validator positive = number_where("> 0", [](double v) { return v > 0.0; });
+inline const CLI::Validator non_negative = number_where(">= 0", [](double v) { return v >= 0.0; });
+
+/// CLI11 validator: a decimal integer in [min, the largest T] (CLI11 2.1 alone reads "010" as
+/// octal 8 and "0x10" as 16, and clamps a long's overflow); leading zeros are dropped before
+/// CLI11 converts it.
+template <typename T>
+CLI::Validator decimal_at_least(T min) {
+  static_assert(std::is_integral_v<T>, "walkgen: decimal_at_least needs an integer type");
+  return CLI::Validator(
+      [min](std::string& s) -> std::string {
+        const std::string bad = "expected a decimal integer >= " + std::to_string(min) + ", got '";
+        if (min < 0 || s.empty() || s.find_first_not_of("0123456789") != std::string::npos) {
+          return bad + s + "'";
+        }
+        s.erase(0, std::min(s.find_first_not_of('0'), s.size() - 1));  // "007" -> "7"
+        errno = 0;
+        const unsigned long long value = std::strtoull(s.c_str(), nullptr, 10);
+        constexpr auto max = static_cast<unsigned long long>(std::numeric_limits<T>::max());
+        if (errno == ERANGE || value > max) {
+          return "expected at most " + std::to_string(max) + ", got '" + s + "'";
+        }
+        if (value < static_cast<unsigned long long>(min)) return bad + s + "'";
+        return {};
+      },
+      "");
+}
 
 /// Parses the command line. Returns -1 when the program should go on; otherwise the exit status:
 /// 0 after --help (usage on stdout), 2 after a parse error (one line on stderr naming the program,
