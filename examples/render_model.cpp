@@ -1,19 +1,24 @@
 // A picture of walkgen's humanoid (models/walkgen_humanoid.xml) for the docs: MuJoCo loads the
 // model standing in its keyframe "stand" and renders it offscreen (EGL, as MujocoRobot renders
-// its cameras) from two free cameras, a 3/4 front view and a side view, side by side in one PNG
-// (zlib's deflate; no other dependency).
+// its cameras) from two free cameras, a 3/4 front view and a side view (600 x 800 px each), side
+// by side in one image written through OpenCV (cv::imwrite; built when walkgen::opencv is).
 //
-//   render_model [--out FILE]          (default humanoid.png; docs/img/humanoid.png is its copy)
+//   render_model [--out FILE]
+//     --out FILE  the image; its extension picks the format (default humanoid.png;
+//                 docs/img/humanoid.png is its copy)
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option with
+// its default and exits 0; an unknown option or a bad value exits 2 with one line on stderr.
+// Exits 1 when the model cannot be loaded or rendered, or the image cannot be written.
 #include <mujoco/mujoco.h>
-#include <zlib.h>
 
-#include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <memory>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
 
 namespace {
@@ -21,57 +26,11 @@ namespace {
 constexpr int kWidth = 600;  // one view [px]
 constexpr int kHeight = 800;
 
-/// An RGB image, rows top to bottom.
-struct Image {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-};
-
-void append_u32(std::vector<unsigned char>& out, std::uint32_t v) {
-  for (int shift = 24; shift >= 0; shift -= 8) out.push_back((v >> shift) & 0xff);
-}
-
-void append_chunk(std::vector<unsigned char>& out, const char* type,
-                  const std::vector<unsigned char>& data) {
-  append_u32(out, std::uint32_t(data.size()));
-  const std::size_t start = out.size();
-  out.insert(out.end(), type, type + 4);
-  out.insert(out.end(), data.begin(), data.end());
-  append_u32(out, std::uint32_t(crc32(0, out.data() + start, uInt(out.size() - start))));
-}
-
-/// Writes an 8-bit RGB PNG: no filter on any row, one deflated IDAT chunk.
-bool write_png(const std::string& path, const Image& image) {
-  std::vector<unsigned char> raw;
-  const std::size_t row = std::size_t(image.width) * 3;
-  for (int y = 0; y < image.height; ++y) {
-    raw.push_back(0);  // filter type "none"
-    raw.insert(raw.end(), image.rgb.begin() + std::ptrdiff_t(y * row),
-               image.rgb.begin() + std::ptrdiff_t((y + 1) * row));
-  }
-  uLongf size = compressBound(uLong(raw.size()));
-  std::vector<unsigned char> deflated(size);
-  if (compress2(deflated.data(), &size, raw.data(), uLong(raw.size()), 9) != Z_OK) return false;
-  deflated.resize(size);
-
-  std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  std::vector<unsigned char> header;
-  append_u32(header, std::uint32_t(image.width));
-  append_u32(header, std::uint32_t(image.height));
-  header.insert(header.end(), {8, 2, 0, 0, 0});  // 8 bits, RGB, deflate, no filter, no interlace
-  append_chunk(png, "IHDR", header);
-  append_chunk(png, "IDAT", deflated);
-  append_chunk(png, "IEND", {});
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) return false;
-  const bool ok = std::fwrite(png.data(), 1, png.size(), f) == png.size();
-  return std::fclose(f) == 0 && ok;
-}
-
 /// Renders one view from a free camera looking at `lookat` and pastes it at column x0 of
-/// `out`. The background (nothing drawn, depth 1) becomes a light vertical gradient.
+/// `out` (8-bit BGR, OpenCV's order). The background (nothing drawn, depth 1) becomes a light
+/// vertical gradient.
 void render_view(const mjModel* m, mjData* d, mjvScene& scene, mjrContext& context,
-                 const mjvOption& option, double azimuth, double elevation, Image& out, int x0) {
+                 const mjvOption& option, double azimuth, double elevation, cv::Mat& out, int x0) {
   mjvCamera camera;
   mjv_defaultFreeCamera(m, &camera);
   camera.lookat[0] = 0.0;
@@ -90,15 +49,14 @@ void render_view(const mjModel* m, mjData* d, mjvScene& scene, mjrContext& conte
     const int source_row = kHeight - 1 - y;
     for (int x = 0; x < kWidth; ++x) {
       const std::size_t s = std::size_t(source_row) * kWidth + std::size_t(x);
-      unsigned char* p =
-          &out.rgb[(std::size_t(y) * std::size_t(out.width) + std::size_t(x0 + x)) * 3];
+      cv::Vec3b& p = out.at<cv::Vec3b>(y, x0 + x);
       if (depth[s] >= 1.0f) {
         const double t = double(y) / kHeight;  // sky: light blue at the top to white
-        p[0] = static_cast<unsigned char>(200 + 50 * t);
-        p[1] = static_cast<unsigned char>(215 + 37 * t);
-        p[2] = static_cast<unsigned char>(235 + 20 * t);
+        p = cv::Vec3b(static_cast<unsigned char>(235 + 20 * t),
+                      static_cast<unsigned char>(215 + 37 * t),
+                      static_cast<unsigned char>(200 + 50 * t));
       } else {
-        std::memcpy(p, &rgb[s * 3], 3);
+        p = cv::Vec3b(rgb[s * 3 + 2], rgb[s * 3 + 1], rgb[s * 3]);
       }
     }
   }
@@ -108,9 +66,21 @@ void render_view(const mjModel* m, mjData* d, mjvScene& scene, mjrContext& conte
 
 int main(int argc, char** argv) {
   std::string out_path = "humanoid.png";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--out") == 0) out_path = argv[i + 1];
-  }
+  CLI::App app{
+      "Renders walkgen's humanoid, modelled on Heicub (thesis §5), standing in MuJoCo: a "
+      "3/4 front and a side view for the docs",
+      "render_model"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--out", out_path,
+                 "the image (two views of 600 x 800 px side by side); its extension picks the "
+                 "format, e.g. .png")
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            if (cv::haveImageWriter(path)) return {};
+            return "OpenCV cannot write an image named '" + path + "' (expected e.g. FILE.png)";
+          },
+          "FILE"));
+  WALKGEN_CLI_PARSE(app, argc, argv);
   const std::string xml = std::string(WALKGEN_SOURCE_DIR) + "/models/walkgen_humanoid.xml";
   char error[1000] = "";
   std::unique_ptr<mjModel, void (*)(mjModel*)> model(
@@ -154,16 +124,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "render_model: MuJoCo has no offscreen framebuffer\n");
     status = 1;
   } else {
-    Image image;
-    image.width = 2 * kWidth;
-    image.height = kHeight;
-    image.rgb.assign(std::size_t(image.width) * kHeight * 3, 0);
+    cv::Mat image(kHeight, 2 * kWidth, CV_8UC3, cv::Scalar(0, 0, 0));
     // The robot faces +x; a free camera at azimuth a looks along (cos a, sin a).
     render_view(m, data.get(), scene, context, option, 215.0, -15.0, image, 0);     // 3/4 front
     render_view(m, data.get(), scene, context, option, 90.0, -5.0, image, kWidth);  // right side
-    if (write_png(out_path, image)) {
+    bool written = false;
+    try {
+      written = cv::imwrite(out_path, image);
+    } catch (const cv::Exception&) {  // e.g. the folder does not exist
+    }
+    if (written) {
       std::printf("render_model: wrote %s (%d x %d px: 3/4 front view, right side view)\n",
-                  out_path.c_str(), image.width, image.height);
+                  out_path.c_str(), image.cols, image.rows);
     } else {
       std::fprintf(stderr, "render_model: cannot write %s\n", out_path.c_str());
       status = 1;

@@ -2,28 +2,35 @@
 // the command period, turned into joint trajectories of walkgen's humanoid (models/) by the
 // Ceres whole-body inverse kinematics, one warm-started solve per sample.
 //
-// Writes walking_joints.csv: time, then one column per joint named as in the URDF (q [rad]),
-// then the root link's position (base_x, base_y, base_z [m]).
 //   walking_joints [--ticks N] [--out FILE]
+//     --ticks N   NMPC ticks of 0.4 s to walk, N >= 1 (default 32: two gait cycles of 6.4 s)
+//     --out FILE  the CSV (default walking_joints.csv): time [s], then one column per joint named
+//                 as in the URDF (q [rad]), then the root link's position (base_x, base_y,
+//                 base_z [m])
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option with
+// its default and exits 0; an unknown option or a bad value exits 2 with one line on stderr.
+// Exits 1 when a solve did not converge or the CSV could not be written.
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <string>
 
+#include "common/cli.hpp"
 #include "support/humanoid_ik.hpp"
 
 int main(int argc, char** argv) {
   int ticks = 32;  // two gait cycles of 6.4 s
   std::string out = "walking_joints.csv";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--ticks") == 0) ticks = std::atoi(argv[i + 1]);
-    if (std::strcmp(argv[i], "--out") == 0) out = argv[i + 1];
-  }
-  if (ticks < 1) {
-    std::fprintf(stderr, "walking_joints: expected --ticks >= 1\n");
-    return 2;
-  }
+  CLI::App app{
+      "Turns an NMPC walk into joint trajectories of walkgen's humanoid by the Ceres IK "
+      "(thesis §2.4.2, §6.3)",
+      "walking_joints"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--ticks", ticks,
+                 "NMPC ticks of 0.4 s to walk, >= 1 (32: two gait cycles of 6.4 s)")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--out", out,
+                 "CSV: time [s], one column per URDF joint (q [rad]), base_x, base_y, base_z [m]");
+  WALKGEN_CLI_PARSE(app, argc, argv);
   const Eigen::Vector3d command(0.02, 0.0, 0.05);  // within heicub_settings().max_command
   std::printf("walking_joints: NMPC walk of %d ticks, command (%.3f, %.3f, %.3f)\n", ticks,
               command.x(), command.y(), command.z());

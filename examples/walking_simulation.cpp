@@ -5,36 +5,261 @@
 // environmental scan (the target behind the robot). walkgen::go_to_target() steers in place of
 // the thesis's keyboard user.
 //
-//   walking_simulation [TASK...] [--out DIR] [--scale S] [--video] [--no-plot]
-//     TASK: straight curved obstacle scan (default: all four)
-//     --scale S  shorter (S < 1) or longer tasks: distances times S
-//     --video    render a frame per NMPC tick (0.4 s) from a following camera: <task>.mp4 via
-//                ffmpeg (when installed) and a strip of frames <task>_frames.png
-//     --no-plot  CSV only (the plots need /usr/bin/python3 with matplotlib)
+//   walking_simulation [TASK...] [--out DIR] [--scale S] [--video] [--video-width W]
+//                      [--video-height H] [--fps F] [--no-plot]
+//     TASK            straight curved obstacle scan (default: all four)
+//     --out DIR       output folder, created if missing (default: the working directory)
+//     --scale S       distances times S, in (0, 5]: shorter (S < 1) or longer tasks
+//     --video         film every task from a camera that follows the robot, one frame per NMPC
+//                     tick (0.4 s walked): <task>.mp4 (H.264, the frames piped into ffmpeg when
+//                     it is on the PATH) and <task>_frames.png, six frames side by side
+//     --video-width W, --video-height H   frame size [px] (default 960 x 540; at most the
+//                     robot's offscreen view, MujocoRobotSettings::view_width x view_height:
+//                     a larger frame is shrunk to it, with a line that says so)
+//     --fps F         frame rate of the MP4 [fps] (default 25: 0.4 s walked per frame plays at
+//                     10x real time)
+//     --no-plot       CSV only (the plots need /usr/bin/python3 with matplotlib)
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option with
+// its default and exits 0; an unknown option or a bad value exits 2 with one line on stderr.
 //
 // Writes, per task, <task>.csv (one row per 10 ms command period: time, command, planned CoM
-// and ZMP, measured ZMP, true CoM and ZMP, support-polygon margin, base height) and
-// <task>.png (path from above; desired vs measured ZMP; velocity-command histograms), and
-// simulation_summary.csv with one line per task. Exit status 0 only when every task reached
-// its target without a fall.
+// and ZMP, measured ZMP, true CoM and ZMP, support-polygon margin, base height),
+// <task>_scene.csv (target and obstacles) and <task>.png (python/plot_simulation.py: the path
+// from above; desired vs measured ZMP; velocity-command histograms), and
+// simulation_summary.csv with one line per task. The frame strip is written through OpenCV
+// (cv::imwrite) when the build has walkgen::opencv; without it the six frames go to
+// <task>_frames/ as PPM files and python/plot_simulation.py puts them side by side.
+// Exit status 0 only when every task reached its target without a fall and every file (video
+// included) was written; 1 otherwise; 2 on a bad command line.
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
+#include "common/cli.hpp"
 #include "support/simulated_tasks.hpp"
+#ifdef WALKGEN_SIMULATION_OPENCV  // examples/CMakeLists.txt: with walkgen::opencv
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#endif
 
 namespace {
 
-bool write_ppm(const std::string& path, const walkgen::CameraImage& image) {
+constexpr double kTick = 0.4;  ///< one frame per NMPC tick [s] (heicub_settings().t)
+constexpr int kStripFrames = 6;
+/// The camera follows the true CoM from behind on the right, looking down enough (25° with
+/// MuJoCo's vertical field of view of 45°) that the frame holds floor up to its top edge: above
+/// the horizon MuJoCo draws nothing (the model has no sky), which left a black band.
+constexpr double kCameraDistance = 2.0;  ///< [m] from the point 0.3 m above the CoM's ground point
+constexpr double kCameraAzimuth = 30.0;  ///< [deg]
+constexpr double kCameraElevation = -25.0;  ///< [deg]
+
+/// The film of one task: frame size and rate.
+struct VideoSettings {
+  int width = 960;  ///< [px]
+  int height = 540;
+  double fps = 25.0;
+};
+
+/// A frame kept for the strip: half the size of the video's.
+struct Thumbnail {
+  double time = 0.0;  ///< [s] of the walk
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+};
+
+/// `s` in single quotes for /bin/sh.
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// What the shell reports of a command's end: "exit status N" or "killed by signal N".
+std::string describe_status(int status) {
+  if (status == -1) return "could not be started";
+  if (WIFEXITED(status)) return "exit status " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
+  return "status " + std::to_string(status);
+}
+
+bool succeeded(int status) { return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0; }
+
+/// `image` at half its size (the mean of each 2 × 2 block).
+Thumbnail half_size(const walkgen::CameraImage& image, double time) {
+  Thumbnail t;
+  t.time = time;
+  t.width = image.width / 2;
+  t.height = image.height / 2;
+  t.rgb.resize(std::size_t(t.width) * std::size_t(t.height) * 3);
+  const std::size_t row = std::size_t(image.width) * 3;
+  for (int y = 0; y < t.height; ++y) {
+    for (int x = 0; x < t.width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t s = std::size_t(2 * y) * row + std::size_t(2 * x) * 3 + std::size_t(c);
+        const int sum =
+            image.rgb[s] + image.rgb[s + 3] + image.rgb[s + row] + image.rgb[s + row + 3];
+        t.rgb[(std::size_t(y) * std::size_t(t.width) + std::size_t(x)) * 3 + std::size_t(c)] =
+            static_cast<unsigned char>((sum + 2) / 4);
+      }
+    }
+  }
+  return t;
+}
+
+/// Frames for the strip without keeping them all: every `stride`-th frame up to a few dozen
+/// (the stride doubles when they are too many), and always the latest one.
+class StripFrames {
+ public:
+  void add(Thumbnail frame) {
+    if (count_++ % stride_ == 0) {
+      kept_.push_back(std::move(frame));
+      if (kept_.size() > 4 * kStripFrames) {  // keep every other one, take half as many
+        for (std::size_t i = 1; 2 * i < kept_.size(); ++i) kept_[i] = std::move(kept_[2 * i]);
+        kept_.resize((kept_.size() + 1) / 2);
+        stride_ *= 2;
+      }
+      latest_.reset();
+    } else {
+      latest_ = std::make_unique<Thumbnail>(std::move(frame));
+    }
+  }
+  /// Up to kStripFrames frames, from the first to the latest, evenly spread in time.
+  std::vector<const Thumbnail*> pick() const {
+    std::vector<const Thumbnail*> all;
+    for (const Thumbnail& t : kept_) all.push_back(&t);
+    if (latest_) all.push_back(latest_.get());
+    if (all.size() <= std::size_t(kStripFrames)) return all;
+    std::vector<const Thumbnail*> picks;
+    const double t0 = all.front()->time, t1 = all.back()->time;
+    for (int i = 0; i < kStripFrames; ++i) {
+      const double t = t0 + (t1 - t0) * i / (kStripFrames - 1);
+      const auto nearest = std::min_element(all.begin(), all.end(), [t](auto a, auto b) {
+        return std::abs(a->time - t) < std::abs(b->time - t);
+      });
+      if (picks.empty() || picks.back() != *nearest) picks.push_back(*nearest);
+    }
+    return picks;
+  }
+
+ private:
+  std::vector<Thumbnail> kept_;
+  std::unique_ptr<Thumbnail> latest_;
+  long count_ = 0;
+  long stride_ = 1;
+};
+
+#ifndef WALKGEN_SIMULATION_OPENCV
+bool write_ppm(const std::string& path, const Thumbnail& image) {
   std::ofstream out(path, std::ios::binary);
   out << "P6\n" << image.width << ' ' << image.height << "\n255\n";
   out.write(reinterpret_cast<const char*>(image.rgb.data()), std::streamsize(image.rgb.size()));
   return out.good();
 }
+#endif
+
+/// The strip <task>_frames.png: with OpenCV, one PNG with each frame's time above it; without,
+/// the frames as <task>_frames/frame_<time>s.ppm for python/plot_simulation.py. Either way the
+/// frames of an earlier run are removed from <task>_frames/.
+bool write_strip(const std::string& out_dir, const std::string& task,
+                 const std::vector<const Thumbnail*>& frames, std::string& written) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(out_dir) / (task + "_frames");
+  std::error_code ec;
+  if (fs::is_directory(dir, ec)) {
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      if (entry.path().extension() == ".ppm") fs::remove(entry.path(), ec);
+    }
+    fs::remove(dir, ec);  // only when empty
+  }
+  if (frames.empty()) return true;
+#ifdef WALKGEN_SIMULATION_OPENCV
+  const int w = frames.front()->width, h = frames.front()->height, label = 34, gap = 8;
+  const int n = int(frames.size());
+  cv::Mat strip(label + h, n * w + (n - 1) * gap, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (int i = 0; i < n; ++i) {
+    const cv::Mat rgb(h, w, CV_8UC3,
+                      const_cast<unsigned char*>(frames[std::size_t(i)]->rgb.data()));
+    cv::cvtColor(rgb, strip(cv::Rect(i * (w + gap), label, w, h)), cv::COLOR_RGB2BGR);
+    char text[32];
+    std::snprintf(text, sizeof(text), "t = %.1f s", frames[std::size_t(i)]->time);
+    cv::putText(strip, text, cv::Point(i * (w + gap) + 6, label - 10), cv::FONT_HERSHEY_SIMPLEX,
+                0.75, cv::Scalar(0, 0, 0), 2, cv::LINE_AA);
+  }
+  written = (fs::path(out_dir) / (task + "_frames.png")).string();
+  try {
+    return cv::imwrite(written, strip);
+  } catch (const cv::Exception&) {
+    return false;
+  }
+#else
+  written = dir.string() + "/*.ppm";
+  if (!fs::create_directories(dir, ec) && ec) return false;
+  bool ok = true;
+  for (const Thumbnail* frame : frames) {
+    char name[48];
+    std::snprintf(name, sizeof(name), "frame_%07.1fs.ppm", frame->time);
+    ok = write_ppm((dir / name).string(), *frame) && ok;
+  }
+  return ok;
+#endif
+}
+
+/// The video of one task: frames piped into ffmpeg (raw RGB on its standard input), which
+/// encodes them while the robot walks.
+class VideoPipe {
+ public:
+  VideoPipe(const std::string& mp4, const VideoSettings& v) {
+    char rate[32];
+    std::snprintf(rate, sizeof(rate), "%g", v.fps);
+    command_ = "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -video_size " +
+               std::to_string(v.width) + "x" + std::to_string(v.height) + " -framerate " + rate +
+               " -i - -an -vcodec libx264 -preset veryfast -crf 20 -pix_fmt yuv420p "
+               "-movflags +faststart " +
+               shell_quote(mp4);
+    pipe_ = popen(command_.c_str(), "w");
+  }
+  ~VideoPipe() {
+    if (pipe_ != nullptr) pclose(pipe_);
+  }
+  VideoPipe(const VideoPipe&) = delete;
+  VideoPipe& operator=(const VideoPipe&) = delete;
+
+  /// Sends a frame; false once ffmpeg stopped reading (finish() then says why).
+  bool write(const walkgen::CameraImage& image) {
+    if (pipe_ == nullptr || broken_) return false;
+    broken_ = std::fwrite(image.rgb.data(), 1, image.rgb.size(), pipe_) != image.rgb.size();
+    frames_ += !broken_;
+    return !broken_;
+  }
+  /// Closes the pipe and waits for ffmpeg; "" when it wrote the video, else one line that names
+  /// the command and how it ended.
+  std::string finish() {
+    const int status = pipe_ == nullptr ? -1 : pclose(pipe_);
+    pipe_ = nullptr;
+    if (succeeded(status) && !broken_) return "";
+    return "ffmpeg failed (" + describe_status(status) +
+           (broken_ ? ", stopped reading frames" : "") + "): " + command_;
+  }
+  int frames() const { return frames_; }
+
+ private:
+  std::string command_;
+  std::FILE* pipe_ = nullptr;
+  bool broken_ = false;
+  int frames_ = 0;
+};
 
 void write_rows(const std::string& path, const walkgen_test::TaskResult& r) {
   std::ofstream csv(path);
@@ -51,55 +276,109 @@ void write_rows(const std::string& path, const walkgen_test::TaskResult& r) {
   }
 }
 
+/// CLI11 validator: an even number (H.264 in yuv420p halves both sides for its colours).
+CLI::Validator even() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        int v = 0;
+        if (CLI::detail::lexical_cast(s, v) && v % 2 == 0) return {};
+        return "expected an even number of pixels, got '" + s + "'";
+      },
+      "EVEN");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string out_dir = ".";
   double scale = 1.0;
-  bool video = false, plot = true;
+  bool video = false, no_plot = false;
+  VideoSettings film;
   std::vector<std::string> names;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--out" && i + 1 < argc) {
-      out_dir = argv[++i];
-    } else if (a == "--scale" && i + 1 < argc) {
-      scale = std::atof(argv[++i]);
-    } else if (a == "--video") {
-      video = true;
-    } else if (a == "--no-plot") {
-      plot = false;
-    } else if (a == "straight" || a == "curved" || a == "obstacle" || a == "scan") {
-      names.push_back(a);
-    } else {
-      std::fprintf(stderr,
-                   "walking_simulation: unknown argument '%s'\nusage: walking_simulation "
-                   "[straight|curved|obstacle|scan ...] [--out DIR] [--scale S] [--video] "
-                   "[--no-plot]\n",
-                   a.c_str());
-      return 2;
-    }
+  CLI::App app{
+      "The humanoid walks the test tasks of thesis §9.2 in MuJoCo, closed loop (figure "
+      "6.1): CSV, plots, videos",
+      "walking_simulation"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("TASK", names,
+                 "tasks to walk: straight 2 m, curved (target ahead left), obstacle (a chair on "
+                 "the way), scan (target behind); default: all four")
+      ->check(CLI::IsMember({"straight", "curved", "obstacle", "scan"}))
+      ->default_str("");
+  app.add_option("--out", out_dir,
+                 "output folder for <task>.csv, .png, .mp4, <task>_frames.png and "
+                 "simulation_summary.csv (created if missing)");
+  app.add_option("--scale", scale,
+                 "the tasks' distances times this factor, in (0, 5]: shorter (< 1) or longer")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            double x = 0.0;
+            if (CLI::detail::lexical_cast(v, x) && x > 0.0 && x <= 5.0) return {};
+            return "expected a factor in (0, 5], got '" + v + "'";
+          },
+          "in (0 - 5]"));
+  app.add_flag("--video", video,
+               "film each task from a camera following the robot, one frame per NMPC tick (0.4 "
+               "s walked): <task>.mp4 (needs ffmpeg) and the strip <task>_frames.png");
+  app.add_option("--video-width", film.width, "frame width of --video [px], even")
+      ->check(CLI::Range(64, 1920))
+      ->check(even());
+  app.add_option("--video-height", film.height, "frame height of --video [px], even")
+      ->check(CLI::Range(64, 1080))
+      ->check(even());
+  app.add_option("--fps", film.fps,
+                 "frame rate of <task>.mp4 [fps]; a frame is 0.4 s walked, so 25 fps plays at 10x "
+                 "real time")
+      ->check(CLI::Range(1.0, 60.0));
+  app.add_flag("--no-plot", no_plot,
+               "CSV only, no <task>.png (plotting needs /usr/bin/python3 with matplotlib)");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (!std::filesystem::is_directory(out_dir)) {
+    std::fprintf(stderr, "walking_simulation: cannot create the output folder %s\n",
+                 out_dir.c_str());
+    return 1;
   }
-  if (!(scale > 0.0 && scale <= 5.0)) {
-    std::fprintf(stderr, "walking_simulation: --scale expects a factor in (0, 5]\n");
-    return 2;
+  // The robot's offscreen buffer bounds the frame size (MujocoRobotSettings::view_width and
+  // view_height, which tests/support/simulated_tasks.hpp leaves at their defaults).
+  const walkgen::MujocoRobotSettings view = walkgen_test::task_robot_settings({});
+  if (video && (film.width > view.view_width || film.height > view.view_height)) {
+    const double shrink =
+        std::min(double(view.view_width) / film.width, double(view.view_height) / film.height);
+    const int w = 2 * int(film.width * shrink / 2), h = 2 * int(film.height * shrink / 2);
+    std::printf(
+        "walking_simulation: the robot renders at most %d x %d px "
+        "(MujocoRobotSettings::view_width/view_height of "
+        "walkgen_test::task_robot_settings): filming %d x %d px instead of %d x %d\n",
+        view.view_width, view.view_height, w, h, film.width, film.height);
+    film.width = w;
+    film.height = h;
   }
   const bool have_ffmpeg = video && std::system("command -v ffmpeg >/dev/null 2>&1") == 0;
-  if (video && !have_ffmpeg) std::printf("walking_simulation: no ffmpeg: frames and strip only\n");
+  if (video && !have_ffmpeg) {
+    std::printf("walking_simulation: ffmpeg is not on the PATH: no videos, frame strips only\n");
+  }
+  if (video) std::signal(SIGPIPE, SIG_IGN);  // a failed ffmpeg: a write error, not our end
 
   std::ofstream summary(out_dir + "/simulation_summary.csv");
   summary << "task,reached,final_distance,time,zmp_distance_mean,zmp_distance_std,"
              "zmp_inside_fraction,min_base_height,min_obstacle_distance,qp_failures,ik_failures\n";
   int failures = 0;
+  bool files_ok = true;
   for (const auto& task : walkgen_test::section_9_2_tasks(scale)) {
     if (!names.empty() && std::find(names.begin(), names.end(), task.name) == names.end()) {
       continue;
     }
     std::printf("%s: %s, target (%.2f, %.2f), up to %.0f s\n", task.name.c_str(),
                 task.description.c_str(), task.target.x(), task.target.y(), task.time_limit);
-    const std::string frames_dir = out_dir + "/" + task.name + "_frames";
-    if (video)
-      std::system(("mkdir -p '" + frames_dir + "' && rm -f '" + frames_dir + "'/*.ppm").c_str());
-    int frame = 0;
+    std::fflush(stdout);
+    std::unique_ptr<VideoPipe> pipe;  // ffmpeg, started at the first frame
+    StripFrames strip;
+    bool filming = video;
+    int frames = 0;
+    double render_seconds = 0.0, pipe_seconds = 0.0;  // wall time of the frames [s]
     double next_report = 10.0;
     walkgen::CameraImage image;
     const auto result = walkgen_test::run_task(
@@ -112,16 +391,30 @@ int main(int argc, char** argv) {
             std::printf("  t = %5.1f s: CoM (%5.2f, %5.2f), heading %5.2f rad, %.2f m to go\n", t,
                         st.com_x[0], st.com_y[0], st.heading(),
                         (Eigen::Vector2d(st.com_x[0], st.com_y[0]) - task.target).norm());
+            std::fflush(stdout);
             next_report += 10.0;
           }
-          if (!video) return;
+          if (!filming) return;
+          using Clock = std::chrono::steady_clock;
+          const auto start = Clock::now();
           const Eigen::Vector2d c = walkgen_test::true_com(robot);
-          if (robot.render_view(Eigen::Vector3d(c.x(), c.y(), 0.3), 2.4, 30.0, -20.0, 480, 360,
-                                image)) {
-            char name[64];
-            std::snprintf(name, sizeof(name), "/frame_%05d.ppm", frame++);
-            write_ppm(frames_dir + name, image);
+          if (!robot.render_view(Eigen::Vector3d(c.x(), c.y(), 0.3), kCameraDistance,
+                                 kCameraAzimuth, kCameraElevation, film.width, film.height,
+                                 image)) {
+            std::printf("  no video: %s\n", robot.render_cameras().message.c_str());
+            filming = false;
+            return;
           }
+          strip.add(half_size(image, t));
+          const auto rendered = Clock::now();
+          if (have_ffmpeg && !pipe) {
+            std::fflush(stdout);  // before ffmpeg writes to the same streams
+            pipe = std::make_unique<VideoPipe>(out_dir + "/" + task.name + ".mp4", film);
+          }
+          if (pipe) pipe->write(image);
+          ++frames;
+          render_seconds += std::chrono::duration<double>(rendered - start).count();
+          pipe_seconds += std::chrono::duration<double>(Clock::now() - rendered).count();
         });
     double mean = 0.0, sd = 0.0;
     result.zmp_distance(mean, sd);
@@ -146,28 +439,49 @@ int main(int argc, char** argv) {
     for (const auto& o : task.obstacles) {
       scene << "obstacle," << o.x << ',' << o.y << ',' << o.radius << ',' << o.margin << '\n';
     }
-    std::fflush(stdout);  // before ffmpeg and python write to the same stream
-    if (video && frame > 0 && have_ffmpeg) {
-      const std::string cmd = "ffmpeg -loglevel error -y -framerate 20 -i '" + frames_dir +
-                              "/frame_%05d.ppm' -pix_fmt yuv420p -vcodec libx264 '" + out_dir +
-                              "/" + task.name + ".mp4'";
-      if (std::system(cmd.c_str()) == 0) {
-        std::printf("  wrote %s/%s.mp4 (%d frames, 20 fps = 8x real time)\n", out_dir.c_str(),
-                    task.name.c_str(), frame);
+    if (!video) continue;
+    if (frames > 0) {
+      std::printf("  filmed %d frames of %d x %d px: %.0f ms each to render", frames, film.width,
+                  film.height, 1000.0 * render_seconds / frames);
+      if (pipe) std::printf(", %.0f ms to hand to ffmpeg", 1000.0 * pipe_seconds / frames);
+      std::printf("\n");
+    }
+    std::string strip_path;
+    if (!write_strip(out_dir, task.name, strip.pick(), strip_path)) {
+      std::fprintf(stderr, "walking_simulation: cannot write the frame strip %s\n",
+                   strip_path.c_str());
+      files_ok = false;
+    } else if (!strip_path.empty()) {
+      std::printf("  wrote %s\n", strip_path.c_str());
+    }
+    std::fflush(stdout);
+    if (pipe) {
+      const int sent = pipe->frames();
+      const std::string error = pipe->finish();
+      if (!error.empty()) {
+        std::fprintf(stderr, "walking_simulation: %s\n", error.c_str());
+        files_ok = false;
+      } else if (sent > 0) {
+        std::printf("  wrote %s/%s.mp4 (%d frames, %g fps = %gx real time)\n", out_dir.c_str(),
+                    task.name.c_str(), sent, film.fps, film.fps * kTick);
       }
     }
   }
   summary.close();
   std::fflush(stdout);
-  if (plot) {
-    const std::string cmd = "/usr/bin/python3 '" + std::string(WALKGEN_SOURCE_DIR) +
-                            "/python/plot_simulation.py' '" + out_dir + "'";
-    if (std::system(cmd.c_str()) != 0) {
-      std::fprintf(stderr, "walking_simulation: plotting failed (%s)\n", cmd.c_str());
+  if (!no_plot) {
+    const std::string cmd =
+        "/usr/bin/python3 " +
+        shell_quote(std::string(WALKGEN_SOURCE_DIR) + "/python/plot_simulation.py") + " " +
+        shell_quote(out_dir);
+    const int status = std::system(cmd.c_str());
+    if (!succeeded(status)) {
+      std::fprintf(stderr, "walking_simulation: plotting failed (%s): %s\n",
+                   describe_status(status).c_str(), cmd.c_str());
       return 1;
     }
   }
-  std::printf("walking_simulation: %d task(s) failed; CSV and PNG in %s\n", failures,
-              out_dir.c_str());
-  return failures == 0 ? 0 : 1;
+  std::printf("walking_simulation: %d task(s) failed%s; CSV and PNG in %s\n", failures,
+              files_ok ? "" : ", and files could not be written (see above)", out_dir.c_str());
+  return failures == 0 && files_ok ? 0 : 1;
 }

@@ -9,7 +9,7 @@
 #   bash scripts/demo.sh [--quick] [--out DIR] [TASK...] [walking_simulation options]
 #
 #   --quick    a short check of the whole chain (about a minute once built): the straight task
-#              shortened to 0.2 m, no video, plots on; one pattern scenario. The ctest
+#              shortened to 0.5 m, no video, plots on; one pattern scenario. The ctest
 #              "readme_demo" runs it.
 #   --out DIR  where the results go (default build/release/example_output, or .../demo_quick)
 #   TASK...    straight curved obstacle scan (default: all four); other arguments go to
@@ -58,8 +58,8 @@ export EGL_PLATFORM="${EGL_PLATFORM:-surfaceless}"
 
 start=${SECONDS}
 if [ "${quick}" -eq 1 ]; then
-  echo "demo (quick): walking_simulation straight --scale 0.1 --out ${sim} ${sim_args[*]}"
-  "${bin}/walking_simulation" straight --scale 0.1 --out "${sim}" "${sim_args[@]}"
+  echo "demo (quick): walking_simulation straight --scale 0.25 --out ${sim} ${sim_args[*]}"
+  "${bin}/walking_simulation" straight --scale 0.25 --out "${sim}" "${sim_args[@]}"
   echo "demo (quick): walking_scenarios straight --out ${out}"
   "${bin}/walking_scenarios" straight --out "${out}"
 else

@@ -153,6 +153,8 @@ struct TaskResult {
 inline walkgen::MujocoRobotSettings task_robot_settings(const SimTask& task) {
   walkgen::MujocoRobotSettings s;
   s.objects = task_objects(task);
+  s.view_width = 960;  // walking_simulation --video films at up to 960 x 540
+  s.view_height = 540;
   return s;
 }
 
