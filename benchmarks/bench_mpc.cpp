@@ -43,9 +43,13 @@ void BM_Tick(benchmark::State& state, const char* scenario) {
   for (auto _ : state) {
     if (mpc.set_command(sc.command(int(ticks % 200))) != walkgen::CommandStatus::accepted) {
       state.SkipWithError("command rejected");
+      break;
     }
     const auto& r = mpc.solve();
-    if (r.status != walkgen::MpcStatus::solved) state.SkipWithError("QP failed");
+    if (r.status != walkgen::MpcStatus::solved) {
+      state.SkipWithError("QP failed");
+      break;
+    }
     changes += r.qp_iterations;
     mpc.advance();
     ++ticks;
@@ -92,7 +96,10 @@ void BM_QpOfTick(benchmark::State& state) {
   for (auto _ : state) {
     const CapturedQp& p = qps[k];
     qp.init(p.H, p.g, p.A, p.lb, p.ub, p.l, p.u);
-    if (qp.solve().status != walkgen::QpStatus::solved) state.SkipWithError("QP failed");
+    if (qp.solve().status != walkgen::QpStatus::solved) {
+      state.SkipWithError("QP failed");
+      break;
+    }
     k = (k + 1) % qps.size();
   }
 }

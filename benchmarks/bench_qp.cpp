@@ -34,11 +34,16 @@ using Seq = walkgen_test::WalkingQpSequence;
 // Per-solve counters: changes = active-set changes per solve, active = active-set size.
 struct SolveStats {
   long changes = 0, active = 0, solves = 0;
-  void add(benchmark::State& state, const walkgen::QpResult<double>& r) {
-    if (r.status != QpStatus::solved) state.SkipWithError("not solved");
+  /// False (and the benchmark marked as failed) when `r` is not solved: leave the loop then.
+  [[nodiscard]] bool add(benchmark::State& state, const walkgen::QpResult<double>& r) {
+    if (r.status != QpStatus::solved) {
+      state.SkipWithError("not solved");
+      return false;
+    }
     changes += r.iterations;
     active += r.active_set_size;
     ++solves;
+    return true;
   }
   void report(benchmark::State& state) const {
     const double n = static_cast<double>(std::max(1L, solves));
@@ -63,7 +68,7 @@ void BM_RandomCold(benchmark::State& state) {
   for (auto _ : state) {
     qp.init(p.H, p.g, p.A, p.lb, p.ub, p.l, p.u);
     const auto& r = qp.solve();
-    stats.add(state, r);
+    if (!stats.add(state, r)) break;
   }
   stats.report(state);
 }
@@ -98,7 +103,7 @@ void BM_RandomWarmUpdate(benchmark::State& state) {
     const auto& v = variants[k++ % variants.size()];
     qp.update(v.g, v.lb, v.ub, v.l, v.u);
     const auto& r = qp.solve();
-    stats.add(state, r);
+    if (!stats.add(state, r)) break;
   }
   stats.report(state);
 }
@@ -144,7 +149,7 @@ void walking_ticks(benchmark::State& state, bool warm) {
     const auto& w = data.ticks[k++ % data.ticks.size()];
     qp.init(w.H, w.g, w.A, w.lb, w.ub);
     const auto& r = qp.solve();
-    stats.add(state, r);
+    if (!stats.add(state, r)) break;
   }
   stats.report(state);
 }
@@ -175,7 +180,10 @@ void BM_WalkingWarmUpdate(benchmark::State& state) {
     if (variant == 8) {
       const auto& w = data.ticks[tick];
       qp.init(w.H, w.g, w.A, w.lb, w.ub);
-      if (qp.solve().status != QpStatus::solved) state.SkipWithError("the tick's QP not solved");
+      if (qp.solve().status != QpStatus::solved) {
+        state.SkipWithError("the tick's QP not solved");
+        break;
+      }
       variant = 0;
     }
     const auto& v = data.feedback[tick][variant];
@@ -184,8 +192,11 @@ void BM_WalkingWarmUpdate(benchmark::State& state) {
     const auto& r = qp.solve();
     const auto stop = std::chrono::steady_clock::now();
     state.SetIterationTime(std::chrono::duration<double>(stop - start).count());
-    if (!r.reused_factorization) state.SkipWithError("factorisation not reused");
-    stats.add(state, r);
+    if (!r.reused_factorization) {
+      state.SkipWithError("factorisation not reused");
+      break;
+    }
+    if (!stats.add(state, r)) break;
     if (++variant == 8) tick = (tick + 1) % data.ticks.size();
   }
   stats.report(state);

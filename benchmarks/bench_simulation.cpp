@@ -28,9 +28,13 @@ void BM_ClosedLoopTick(benchmark::State& state) {
   walkgen_test::HumanoidIk ik(tree());
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   walkgen_test::SimLoop loop(settings, robot, ik);
-  if (loop.start().status != walkgen::LoopStatus::ok) state.SkipWithError("start failed");
+  if (loop.start().status != walkgen::LoopStatus::ok) {
+    state.SkipWithError("start failed");
+    return;
+  }
   if (loop.set_command({0.03, 0.0, 0.05}) != walkgen::CommandStatus::accepted) {
     state.SkipWithError("command rejected");
+    return;
   }
   long ticks = 0;
   for (auto _ : state) {
@@ -41,8 +45,12 @@ void BM_ClosedLoopTick(benchmark::State& state) {
     if (++ticks % 1500 == 0) {  // 10 minutes walked: start again, untimed
       state.PauseTiming();
       robot.reset();
-      if (loop.start().status != walkgen::LoopStatus::ok) state.SkipWithError("start failed");
+      const bool started = loop.start().status == walkgen::LoopStatus::ok;
       state.ResumeTiming();
+      if (!started) {
+        state.SkipWithError("start failed");
+        break;
+      }
     }
   }
   report(state, settings.t);
@@ -80,7 +88,10 @@ void BM_ControllerOnly(benchmark::State& state) {
   interp.interpolate(mpc, samples.data());
   walkgen_test::start_walk(ik, samples.front());
   for (auto _ : state) {
-    if (mpc.solve().status != walkgen::MpcStatus::solved) state.SkipWithError("QP failed");
+    if (mpc.solve().status != walkgen::MpcStatus::solved) {
+      state.SkipWithError("QP failed");
+      break;
+    }
     interp.interpolate(mpc, samples.data());
     for (const auto& s : samples) benchmark::DoNotOptimize(ik.solve(walkgen::ik_target(s)));
     mpc.advance();

@@ -157,7 +157,7 @@ function(walkgen_add_example)
 endfunction()
 
 # The ctest "examples_help" (label "example"): every program added by walkgen_add_example so far
-# answers --help with exit 0 and a usage text naming each of its options, and rejects an unknown
+# answers --help with exit 0 and a usage text ("Usage:", "Options:"), and rejects an unknown
 # option with a non-zero exit and one line on stderr (tests/examples_help.cmake). Call it once,
 # after the last walkgen_add_example.
 function(walkgen_add_examples_help_test)

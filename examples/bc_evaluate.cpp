@@ -99,9 +99,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(all_task_names))
       ->default_str(CLI::detail::join(all_task_names, ","));
   app.add_option("--layouts", layouts, "rooms per task, >= 1: seeds --seed, --seed + 1, ...")
-      ->check(walkgen_examples::decimal_at_least<int>(1));
-  app.add_option("--seed", seed, "the first room's seed (default: none recorded)")
-      ->check(walkgen_examples::decimal_at_least<std::uint32_t>(0));
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--seed", seed, "the first room's seed; room r uses seed + r")
+      ->transform(walkgen_examples::decimal_at_least<std::uint32_t>(0));
   app.add_option("--time-limit", time_limit,
                  "simulated time per episode [s], >= 0; 0: the room's own")
       ->check(walkgen_examples::non_negative);

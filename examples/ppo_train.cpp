@@ -286,27 +286,27 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember({"benchmark", "nmpc"}));
   app.add_option("--epochs", o.epochs, "training epochs, >= 1 (default: benchmark 50, nmpc 30)")
-      ->check(walkgen_examples::decimal_at_least<int>(1))
+      ->transform(walkgen_examples::decimal_at_least<int>(1))
       ->default_str("");
   app.add_option("--steps", o.steps, "steps per epoch, >= 1 (default: benchmark 10000, nmpc 8192)")
-      ->check(walkgen_examples::decimal_at_least<long>(1))
+      ->transform(walkgen_examples::decimal_at_least<long>(1))
       ->default_str("");
   app.add_option("--seed", o.seed, "seed of the policy and the training environments")
-      ->check(walkgen_examples::decimal_at_least<std::uint64_t>(0));
+      ->transform(walkgen_examples::decimal_at_least<std::uint64_t>(0));
   app.add_option("--out", o.out, "folder of the CSV files and the policy (ppo_<env>.pt)");
   app.add_option("--envs", o.envs, "environments stepped at once, >= 1")
-      ->check(walkgen_examples::decimal_at_least<int>(1));
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_option("--threads", o.threads, "nmpc: threads that step the environments, >= 1")
-      ->check(walkgen_examples::decimal_at_least<int>(1));
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_option("--obstacles", o.obstacles, "nmpc: circular obstacles per episode, >= 0")
-      ->check(walkgen_examples::decimal_at_least<int>(0));
+      ->transform(walkgen_examples::decimal_at_least<int>(0));
   app.add_option("--policy", o.policy,
                  "test this saved policy instead of training one (default: none)")
       ->check(CLI::ExistingFile);
   app.add_option("--test-runs", o.test_runs, "benchmark: test runs of 10000 steps, >= 1")
-      ->check(walkgen_examples::decimal_at_least<int>(1));
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_option("--test-goals", o.test_goals, "nmpc: held-out test goals, >= 1")
-      ->check(walkgen_examples::decimal_at_least<int>(1));
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_flag("--plot", o.plot, "draw the PNGs (python/plot_learning.py)");
   app.add_flag("--quiet", o.quiet, "no line per epoch");
   WALKGEN_CLI_PARSE(app, argc, argv);
@@ -321,9 +321,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (o.plot) {
-    const std::string cmd = "/usr/bin/python3 \"" WALKGEN_SOURCE_DIR
-                            "/python/plot_learning.py\" \"" +
-                            o.out + "\" " + env_name(o);
+    const std::string cmd =
+        "/usr/bin/python3 " +
+        walkgen_examples::shell_quote(WALKGEN_SOURCE_DIR "/python/plot_learning.py") + " " +
+        walkgen_examples::shell_quote(o.out) + " " + env_name(o);
     if (std::system(cmd.c_str()) != 0) {
       std::cerr << "ppo_train: plotting failed: " << cmd << '\n';
       return 1;

@@ -5,7 +5,7 @@
 // ZMP-in-foot rows 2.68, footstep feasibility 2.71, relative yaw limits 2.75–2.77; built in
 // tests/support/walking_qp.hpp), solves it warm-started from the previous active set, applies the
 // first jerks and advances. The command changes every few seconds (Seq::demo_command): straight,
-// curved, sideways, turn on the spot. Issue 3's generator replaces this with the full NMPC.
+// curved, sideways, turn on the spot. The full NMPC (walkgen::WalkingMpc) is walking_scenarios'.
 //
 //   qp_walking_sequence [--ticks N] [--csv FILE] [--png FILE] [--no-plot] [--quiet]
 //
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   walkgen_examples::cli_defaults(app);
   app.add_option("--ticks", opt.ticks, "ticks to walk, one QP each [ticks of 0.1 s]")
       ->type_name("N")
+      ->transform(walkgen_examples::decimal_at_least<int>(1))
       ->check(CLI::Range(1, 100000));
   app.add_option("--csv", opt.csv, "output CSV file, one row per tick")->type_name("FILE");
   app.add_option("--png", opt.png, "output plot (needs /usr/bin/python3 with matplotlib)")
@@ -133,7 +134,9 @@ int main(int argc, char** argv) {
 
   if (opt.plot) {
     const std::string script = std::string(WALKGEN_SOURCE_DIR) + "/python/plot_walking_qp.py";
-    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + opt.csv + "' '" + opt.png + "'";
+    const std::string cmd = "/usr/bin/python3 " + walkgen_examples::shell_quote(script) + " " +
+                            walkgen_examples::shell_quote(opt.csv) + " " +
+                            walkgen_examples::shell_quote(opt.png);
     if (std::system(cmd.c_str()) == 0) {
       std::printf("wrote %s\n", opt.png.c_str());
     } else {

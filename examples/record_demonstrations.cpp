@@ -31,8 +31,6 @@
 #include "common/cli.hpp"
 #include "support/navigation_episode.hpp"
 
-namespace {}  // namespace
-
 int main(int argc, char** argv) {
   std::string out;
   int episodes = 6;
@@ -50,9 +48,9 @@ int main(int argc, char** argv) {
   walkgen_examples::cli_defaults(app);
   app.add_option("--out", out, "the dataset folder (episodes are added to it)")->required();
   app.add_option("--episodes", episodes, "episodes, >= 1, cycling through the tasks")
-      ->check(walkgen_examples::decimal_at_least<int>(1));
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_option("--seed", seed, "the first room's seed; episode e uses seed + e")
-      ->check(walkgen_examples::decimal_at_least<std::uint32_t>(0));
+      ->transform(walkgen_examples::decimal_at_least<std::uint32_t>(0));
   app.add_option("--tasks", task_names, "comma-separated room tasks")
       ->delimiter(',')
       ->allow_extra_args(false)

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
+#include "walkgen/core/data_dir.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
 
 namespace {
@@ -81,7 +82,7 @@ int main(int argc, char** argv) {
           },
           "FILE"));
   WALKGEN_CLI_PARSE(app, argc, argv);
-  const std::string xml = std::string(WALKGEN_SOURCE_DIR) + "/models/walkgen_humanoid.xml";
+  const std::string xml = walkgen::humanoid_mjcf_path();
   char error[1000] = "";
   std::unique_ptr<mjModel, void (*)(mjModel*)> model(
       mj_loadXML(xml.c_str(), nullptr, error, sizeof(error)), mj_deleteModel);

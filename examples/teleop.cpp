@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
                      "walk in this room (§11.1) until 0.3 m from its target (default: none)")
           ->check(CLI::IsMember(rooms));
   app.add_option("--seed", seed, "the room's layout, 0..4294967295")
-      ->check(walkgen_examples::decimal_at_least<std::uint32_t>(0));
+      ->transform(walkgen_examples::decimal_at_least<std::uint32_t>(0));
   app.add_option("--demonstrations", demonstrations,
                  "record image, disparity, command per tick into this folder (default: none)")
       ->needs(room_option);

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   walkgen_examples::cli_defaults(app);
   app.add_option("--ticks", ticks,
                  "NMPC ticks of 0.4 s to walk, >= 1 (32: two gait cycles of 6.4 s)")
+      ->transform(walkgen_examples::decimal_at_least<int>(1))
       ->check(CLI::Range(1, 100000));
   app.add_option("--out", out,
                  "CSV: time [s], one column per URDF joint (q [rad]), base_x, base_y, base_z [m]");

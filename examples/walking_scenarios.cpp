@@ -110,7 +110,8 @@ bool walk(const walkgen_test::Scenario& sc, const Options& opt) {
   }
   if (opt.plot) {
     const std::string script = std::string(WALKGEN_SOURCE_DIR) + "/python/plot_walking.py";
-    const std::string cmd = "/usr/bin/python3 '" + script + "' '" + base + "'";
+    const std::string cmd = "/usr/bin/python3 " + walkgen_examples::shell_quote(script) + " " +
+                            walkgen_examples::shell_quote(base);
     if (std::system(cmd.c_str()) != 0) {
       std::cerr << "error: plotting " << base << ".png failed (needs /usr/bin/python3 with "
                 << "matplotlib: apt-get install python3-matplotlib, or pass --no-plot); the CSV "

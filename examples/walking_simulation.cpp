@@ -29,8 +29,9 @@
 // simulation_summary.csv with one line per task. The frame strip is written through OpenCV
 // (cv::imwrite) when the build has walkgen::opencv; without it the six frames go to
 // <task>_frames/ as PPM files and python/plot_simulation.py puts them side by side.
-// Exit status 0 only when every task reached its target without a fall and every file (video
-// included) was written; 1 otherwise; 2 on a bad command line.
+// Exit status 0 only when every task reached its target without a fall and every file was
+// written (with --video: the video too, unless ffmpeg is not installed, which is said once);
+// 1 otherwise; 2 on a bad command line.
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -78,13 +79,6 @@ struct Thumbnail {
   int width = 0, height = 0;
   std::vector<unsigned char> rgb;
 };
-
-/// `s` in single quotes for /bin/sh.
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 /// What the shell reports of a command's end: "exit status N" or "killed by signal N".
 std::string describe_status(int status) {
@@ -227,7 +221,7 @@ class VideoPipe {
                std::to_string(v.width) + "x" + std::to_string(v.height) + " -framerate " + rate +
                " -i - -an -vcodec libx264 -preset veryfast -crf 20 -pix_fmt yuv420p "
                "-movflags +faststart " +
-               shell_quote(mp4);
+               walkgen_examples::shell_quote(mp4);
     pipe_ = popen(command_.c_str(), "w");
   }
   ~VideoPipe() {
@@ -321,9 +315,11 @@ int main(int argc, char** argv) {
                "film each task from a camera following the robot, one frame per NMPC tick (0.4 "
                "s walked): <task>.mp4 (needs ffmpeg) and the strip <task>_frames.png");
   app.add_option("--video-width", film.width, "frame width of --video [px], even")
+      ->transform(walkgen_examples::decimal_at_least<int>(64))
       ->check(CLI::Range(64, 1920))
       ->check(even());
   app.add_option("--video-height", film.height, "frame height of --video [px], even")
+      ->transform(walkgen_examples::decimal_at_least<int>(64))
       ->check(CLI::Range(64, 1080))
       ->check(even());
   app.add_option("--fps", film.fps,
@@ -470,10 +466,10 @@ int main(int argc, char** argv) {
   summary.close();
   std::fflush(stdout);
   if (!no_plot) {
-    const std::string cmd =
-        "/usr/bin/python3 " +
-        shell_quote(std::string(WALKGEN_SOURCE_DIR) + "/python/plot_simulation.py") + " " +
-        shell_quote(out_dir);
+    const std::string cmd = "/usr/bin/python3 " +
+                            walkgen_examples::shell_quote(std::string(WALKGEN_SOURCE_DIR) +
+                                                          "/python/plot_simulation.py") +
+                            " " + walkgen_examples::shell_quote(out_dir);
     const int status = std::system(cmd.c_str());
     if (!succeeded(status)) {
       std::fprintf(stderr, "walking_simulation: plotting failed (%s): %s\n",

@@ -12,6 +12,7 @@ built without OpenCV): DIR/<task>_frames.png, those frames side by side.
 import csv
 import glob
 import os
+import re
 import sys
 
 import matplotlib
@@ -30,9 +31,13 @@ def read_csv(path):
 def read_ppm(path):
     with open(path, "rb") as f:
         data = f.read()
-    parts = data.split(maxsplit=4)  # P6, width, height, maxval, pixels
-    width, height = int(parts[1]), int(parts[2])
-    pixels = parts[4][: width * height * 3]
+    # P6, width, height, maxval, then exactly one whitespace byte before the pixels (which may
+    # themselves start with bytes that look like whitespace)
+    header = re.match(rb"P6\s+(\d+)\s+(\d+)\s+\d+\s", data)
+    if header is None:
+        raise ValueError(f"{path}: not a binary PPM (P6) file")
+    width, height = int(header.group(1)), int(header.group(2))
+    pixels = data[header.end() : header.end() + width * height * 3]
     return np.frombuffer(pixels, dtype=np.uint8).reshape(height, width, 3)
 
 

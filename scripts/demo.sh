@@ -12,28 +12,35 @@
 #              shortened to 0.5 m, no video, plots on; one pattern scenario. The ctest
 #              "readme_demo" runs it.
 #   --out DIR  where the results go (default build/release/example_output, or .../demo_quick)
+#   --no-setup skip scripts/setup.sh (the packages are installed; readme_demo uses it)
 #   TASK...    straight curved obstacle scan (default: all four); other arguments go to
 #              build/release/examples/walking_simulation (see its --help), e.g. --no-plot.
 set -euo pipefail
+caller="$(pwd)"
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 root="$(pwd)"
 
 quick=0
+setup=1
 out=""
 sim_args=()
 while [ "$#" -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
+    --no-setup) setup=0 ;;
     --out)
       if [ "$#" -lt 2 ]; then
         echo "demo: --out needs a folder" >&2
         exit 2
       fi
-      out="$2"
+      case "$2" in
+        /*) out="$2" ;;
+        *) out="${caller}/$2" ;;
+      esac
       shift
       ;;
     -h | --help)
-      sed -n '2,16p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,17p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *) sim_args+=("$1") ;;
@@ -41,7 +48,9 @@ while [ "$#" -gt 0 ]; do
   shift
 done
 
-bash scripts/setup.sh
+if [ "${setup}" -eq 1 ]; then
+  bash scripts/setup.sh
+fi
 cmake --preset release
 cmake --build --preset release --target walking_simulation walking_scenarios qp_walking_sequence
 

@@ -54,7 +54,7 @@ inline const CLI::Validator non_negative = number_where(">= 0", [](double v) { r
 
 /// CLI11 validator: a decimal integer in [min, the largest T] (CLI11 2.1 alone reads "010" as
 /// octal 8 and "0x10" as 16, and clamps a long's overflow); leading zeros are dropped before
-/// CLI11 converts it.
+/// CLI11 converts it. Attach it with `->transform(...)` (a `->check` may not rewrite the text).
 template <typename T>
 CLI::Validator decimal_at_least(T min) {
   static_assert(std::is_integral_v<T>, "walkgen: decimal_at_least needs an integer type");
@@ -75,6 +75,13 @@ CLI::Validator decimal_at_least(T min) {
         return {};
       },
       "");
+}
+
+/// `s` in single quotes for /bin/sh (for the plotting and ffmpeg commands the programs run).
+inline std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
 }
 
 /// Parses the command line. Returns -1 when the program should go on; otherwise the exit status:

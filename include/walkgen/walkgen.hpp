@@ -3,6 +3,7 @@
 /// Core umbrella header: everything that needs Eigen only. Never includes an adapter.
 
 #include "walkgen/core/assert.hpp"
+#include "walkgen/core/data_dir.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/core/math.hpp"

@@ -67,6 +67,7 @@ execute_process(COMMAND "${CMAKE_COMMAND}"
                         "-DGENERATOR=${GENERATOR}" "-DCONFIG=${CONFIG}"
                         "-DCXX_COMPILER=${CXX_COMPILER}" "-DCXX_FLAGS=${CXX_FLAGS}"
                         "-DMAKE_PROGRAM=${MAKE_PROGRAM}" "-DEIGEN3_DIR=${EIGEN3_DIR}"
+                        "-DEXPECTED_DATA_DIR=${_moved}/share/walkgen"
                         -P "${_driver}"
                 RESULT_VARIABLE _rc)
 if(NOT _rc EQUAL 0)

@@ -7,7 +7,7 @@
 #   -DSOURCE=<consumer dir> -DBUILD=<its build dir> -DGENERATOR=<generator> [-DCONFIG=<config>]
 #   and either -DPREFIX=<walkgen install prefix> (find_package) or -DWALKGEN_SOURCE_DIR=<dir>
 #   (add_subdirectory). Optional: -DCXX_COMPILER -DCXX_FLAGS -DMAKE_PROGRAM -DEIGEN3_DIR,
-#   -DCOMPONENT=<name> (forwarded as WALKGEN_COMPONENT), and -DEXPECT_CONFIGURE_FAILURE=<regex>:
+#   -DCOMPONENT=<name> (forwarded as WALKGEN_COMPONENT), -DEXPECTED_DATA_DIR=<dir> (forwarded), and -DEXPECT_CONFIGURE_FAILURE=<regex>:
 #   then the configure step must fail with output matching <regex>, and nothing is built.
 # The consumer's program must be called walkgen_consumer and exit 0.
 
@@ -54,7 +54,8 @@ set(_args -S "${SOURCE}" -B "${BUILD}" -G "${GENERATOR}")
 foreach(_pair "PREFIX;CMAKE_PREFIX_PATH" "WALKGEN_SOURCE_DIR;WALKGEN_SOURCE_DIR"
               "CONFIG;CMAKE_BUILD_TYPE" "CXX_COMPILER;CMAKE_CXX_COMPILER"
               "CXX_FLAGS;CMAKE_CXX_FLAGS" "MAKE_PROGRAM;CMAKE_MAKE_PROGRAM"
-              "EIGEN3_DIR;Eigen3_DIR" "COMPONENT;WALKGEN_COMPONENT")
+              "EIGEN3_DIR;Eigen3_DIR" "COMPONENT;WALKGEN_COMPONENT"
+              "EXPECTED_DATA_DIR;EXPECTED_DATA_DIR")
   list(GET _pair 0 _in)
   list(GET _pair 1 _cache)
   if(NOT "${${_in}}" STREQUAL "")

@@ -14,8 +14,8 @@
 ///     walkgen::CeresInverseKinematics<15> ik(tree);
 ///     walkgen::WalkingLoop<16, walkgen::CeresInverseKinematics<15>> loop(
 ///         walkgen::heicub_settings(), robot, ik);
-///     loop.start();                                  // state and IK guess from the measured robot
-///     loop.set_command({0.03, 0.0, 0.0});
+///     if (loop.start().status != walkgen::LoopStatus::ok) { /* the robot is not standing */ }
+///     if (loop.set_command({0.03, 0.0, 0.0}) != walkgen::CommandStatus::accepted) { /* ... */ }
 ///     while (loop.tick().status == walkgen::LoopStatus::ok) {
 ///       for (const auto& s : loop.samples()) { /* s.plan.zmp_x vs s.zmp.zmp_W.x(), ... */ }
 ///     }

@@ -20,7 +20,9 @@
 /// Use (convention 13: the block steps, the application owns the loop):
 /// @code
 ///   walkgen::WalkingMpc<double, 16> mpc(walkgen::hrp2_settings());
-///   mpc.set_command({0.1, 0.0, 0.0});          // v_x, v_y [m/s], ω_z [rad/s], robot frame
+///   if (mpc.set_command({0.1, 0.0, 0.0}) != walkgen::CommandStatus::accepted) {
+///     /* NaN or beyond max_command: rejected, the previous command stays */
+///   }                                          // v_x, v_y [m/s], ω_z [rad/s], robot frame
 ///   for (;;) {
 ///     const auto& r = mpc.solve();             // r.status: solved / qp_failed (safe plan kept)
 ///     interpolator.interpolate(mpc, samples);  // command-period samples of this tick

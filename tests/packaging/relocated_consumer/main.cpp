@@ -1,6 +1,6 @@
 // A consumer of a moved walkgen installation (ctest install_relocated): walkgen::data_dir() is the
 // moved prefix's share/walkgen, the default MujocoRobot loads walkgen's humanoid from there, and
-// the closed loop (NMPC, interpolation, Ceres IK, MuJoCo) walks it forward for one second.
+// the closed loop (NMPC, interpolation, Ceres IK, MuJoCo) walks it for three NMPC ticks (1.2 s).
 #include <cmath>
 #include <cstdio>
 #include <string>
