@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
+#include "common/navigation_cli.hpp"
 #include "support/navigation_episode.hpp"
 #include "walkgen/torch/velocity_network.hpp"
 
@@ -76,11 +77,6 @@ int main(int argc, char** argv) {
   std::string dagger;            // record the expert's labels of the network's states here
   int layouts = 20;
   std::uint32_t seed = 900000;
-  std::vector<std::string> task_names;
-  for (walkgen::NavigationTask t : walkgen::all_navigation_tasks()) {
-    task_names.emplace_back(walkgen::to_string(t));
-  }
-  const std::vector<std::string> all_task_names = task_names;
   CLI::App app{
       "Behavioural cloning in the loop: the trained network (or the scripted expert) "
       "walks the humanoid through held-out random rooms (thesis §11.1.2)",
@@ -93,11 +89,7 @@ int main(int argc, char** argv) {
   CLI::Option* expert_option =
       app.add_flag("--expert", expert, "the scripted expert drives instead (the baseline)");
   model_option->excludes(expert_option);
-  app.add_option("--tasks", task_names, "comma-separated room tasks")
-      ->delimiter(',')
-      ->allow_extra_args(false)
-      ->check(CLI::IsMember(all_task_names))
-      ->default_str(CLI::detail::join(all_task_names, ","));
+  const walkgen_examples::NavigationTasksOption task_option(app);
   app.add_option("--layouts", layouts, "rooms per task, >= 1: seeds --seed, --seed + 1, ...")
       ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_option("--seed", seed, "the first room's seed; room r uses seed + r")
@@ -122,10 +114,7 @@ int main(int argc, char** argv) {
     if (model.empty() && !expert) throw CLI::RequiredError("--model FILE or --expert");
   });
   WALKGEN_CLI_PARSE(app, argc, argv);
-  std::vector<walkgen::NavigationTask> tasks;
-  for (const std::string& name : task_names) {
-    tasks.push_back(walkgen::navigation_task_from_string(name));
-  }
+  const std::vector<walkgen::NavigationTask> tasks = task_option.tasks();
   std::unique_ptr<walkgen::VelocityNetwork> network;
   if (!expert) {
     try {

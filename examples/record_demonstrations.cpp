@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
+#include "common/navigation_cli.hpp"
 #include "support/navigation_episode.hpp"
 
 int main(int argc, char** argv) {
@@ -36,11 +37,6 @@ int main(int argc, char** argv) {
   int episodes = 6;
   std::uint32_t seed = 1000;
   double noise = 0.0;
-  std::vector<std::string> task_names;
-  for (walkgen::NavigationTask t : walkgen::all_navigation_tasks()) {
-    task_names.emplace_back(walkgen::to_string(t));
-  }
-  const std::vector<std::string> all_task_names = task_names;
   CLI::App app{
       "Demonstrations for behavioural cloning: the scripted expert walks the humanoid "
       "through random rooms, recorded per NMPC tick (thesis §7.1, §11.1.1)",
@@ -51,20 +47,13 @@ int main(int argc, char** argv) {
       ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_option("--seed", seed, "the first room's seed; episode e uses seed + e")
       ->transform(walkgen_examples::decimal_at_least<std::uint32_t>(0));
-  app.add_option("--tasks", task_names, "comma-separated room tasks")
-      ->delimiter(',')
-      ->allow_extra_args(false)
-      ->check(CLI::IsMember(all_task_names))
-      ->default_str(CLI::detail::join(all_task_names, ","));
+  const walkgen_examples::NavigationTasksOption task_option(app);
   app.add_option("--noise", noise,
                  "DART: every other episode adds a random turn rate, sigma [rad/s] in [0, 1)")
       ->check(walkgen_examples::number_where("in [0, 1) [rad/s]",
                                              [](double v) { return v >= 0.0 && v < 1.0; }));
   WALKGEN_CLI_PARSE(app, argc, argv);
-  std::vector<walkgen::NavigationTask> tasks;
-  for (const std::string& name : task_names) {
-    tasks.push_back(walkgen::navigation_task_from_string(name));
-  }
+  const std::vector<walkgen::NavigationTask> tasks = task_option.tasks();
   int reached = 0;
   long frames = 0;
   double simulated = 0.0;

@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
+#include "common/navigation_cli.hpp"
 #include "support/simulated_tasks.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS  // examples/CMakeLists.txt: teleop links walkgen::opencv
@@ -171,10 +172,7 @@ int main(int argc, char** argv) {
   double speed = 1.0, max_time = std::numeric_limits<double>::infinity();
   std::string record = "teleop_commands.csv", summary_path, room, demonstrations;
   std::uint32_t seed = 1000;
-  std::vector<std::string> rooms;
-  for (walkgen::NavigationTask t : walkgen::all_navigation_tasks()) {
-    rooms.emplace_back(walkgen::to_string(t));
-  }
+  const std::vector<std::string> rooms = walkgen_examples::navigation_task_names();
   CLI::App app{
       "Keyboard teleoperation of the humanoid in MuJoCo, in the terminal (thesis §8, "
       "appendix B.3.1)",
