@@ -425,6 +425,7 @@ int main(int argc, char** argv) {
               << "\nframes=" << frames << "\n";
     }
   }
-  const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed;
+  const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed ||
+                  status == walkgen::LoopStatus::not_converged;
   return ok && csv.good() && stop_message.empty() ? 0 : 1;
 }

@@ -10,6 +10,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libopencv-dev libopencv-contrib-dev
   libtorch-dev python3-torch
   libcli11-dev shellcheck
+  clang libclang-rt-14-dev
   ffmpeg tmux clang-format python3-numpy python3-matplotlib
 )
 

@@ -32,13 +32,14 @@ template <typename Enum>
 struct Enumerators;
 template <>
 struct Enumerators<QpStatus> {
-  static constexpr std::array<QpStatus, 5> all = {QpStatus::unsolved, QpStatus::solved,
-                                                  QpStatus::infeasible, QpStatus::max_iterations,
-                                                  QpStatus::invalid_input};
+  static constexpr std::array<QpStatus, 6> all = {QpStatus::unsolved,      QpStatus::solved,
+                                                  QpStatus::infeasible,    QpStatus::max_iterations,
+                                                  QpStatus::invalid_input, QpStatus::inaccurate};
 };
 template <>
 struct Enumerators<MpcStatus> {
-  static constexpr std::array<MpcStatus, 2> all = {MpcStatus::solved, MpcStatus::qp_failed};
+  static constexpr std::array<MpcStatus, 3> all = {MpcStatus::solved, MpcStatus::qp_failed,
+                                                   MpcStatus::not_converged};
 };
 template <>
 struct Enumerators<CommandStatus> {
@@ -52,9 +53,9 @@ struct Enumerators<IkStatus> {
 };
 template <>
 struct Enumerators<LoopStatus> {
-  static constexpr std::array<LoopStatus, 5> all = {LoopStatus::ok, LoopStatus::qp_failed,
-                                                    LoopStatus::fallen, LoopStatus::diverged,
-                                                    LoopStatus::not_started};
+  static constexpr std::array<LoopStatus, 6> all = {
+      LoopStatus::ok,       LoopStatus::qp_failed,   LoopStatus::fallen,
+      LoopStatus::diverged, LoopStatus::not_started, LoopStatus::not_converged};
 };
 template <>
 struct Enumerators<RobotStatus> {
@@ -117,6 +118,8 @@ TYPED_TEST(StatusStrings, EveryEnumeratorHasItsOwnNameAndOutOfRangeIsUnknown) {
 TEST(StatusStrings, NamesAreTheEnumerators) {
   EXPECT_STREQ(to_string(QpStatus::max_iterations), "max_iterations");
   EXPECT_STREQ(to_string(MpcStatus::qp_failed), "qp_failed");
+  EXPECT_STREQ(to_string(MpcStatus::not_converged), "not_converged");
+  EXPECT_STREQ(to_string(QpStatus::inaccurate), "inaccurate");
   EXPECT_STREQ(to_string(CommandStatus::non_finite), "non_finite");
   EXPECT_STREQ(to_string(IkStatus::invalid_input), "invalid_input");
   EXPECT_STREQ(to_string(LoopStatus::not_started), "not_started");

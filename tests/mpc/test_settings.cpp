@@ -88,6 +88,29 @@ TEST(WalkingSettings, BadValuesAreRejectedNamingTheKey) {
       {"WalkingSettings.sqp_tolerance", [](Settings& s) { s.sqp_tolerance = 0; }},
       {"WalkingSettings.sqp_tolerance", [](Settings& s) { s.sqp_tolerance = std::nan(""); }},
       {"WalkingSettings.step_velocity_weight", [](Settings& s) { s.step_velocity_weight = -1; }},
+      // Issue 21, defect 4: values that overflowed int arithmetic or lost every digit used to
+      // pass (sqp_iterations + sqp_corrections wrapped and the tick said solved after 0
+      // iterations; t_step / t narrowed to S = 8; n + S − 2 overflowed).
+      {"WalkingSettings.n", [](Settings& s) { s.n = std::numeric_limits<int>::max(); }},
+      {"WalkingSettings.sqp_iterations",
+       [](Settings& s) { s.sqp_iterations = std::numeric_limits<int>::max(); }},
+      {"WalkingSettings.sqp_corrections",
+       [](Settings& s) { s.sqp_corrections = std::numeric_limits<int>::max(); }},
+      {"WalkingSettings.t_step", [](Settings& s) { s.t_step = 0.1 * (4294967296.0 + 8.0); }},
+      {"WalkingSettings.t_step", [](Settings& s) { s.t_step = 0.1 * 1001; }},
+      {"WalkingSettings.n_still", [](Settings& s) { s.n_still = std::numeric_limits<int>::max(); }},
+      {"WalkingSettings.nwsr", [](Settings& s) { s.nwsr = std::numeric_limits<int>::max(); }},
+      {"WalkingSettings.gamma", [](Settings& s) { s.gamma = 1e-300; }},
+      {"WalkingSettings.alpha", [](Settings& s) { s.alpha = 1e300; }},
+      {"WalkingSettings.com_x[0]", [](Settings& s) { s.com_x[0] = 1e30; }},
+      {"WalkingSettings.foot_y", [](Settings& s) { s.foot_y = -1e200; }},
+      {"WalkingSettings.com_x/com_y", [](Settings& s) { s.com_y[0] = 5.0; }},  // 4.9 m off
+      {"WalkingSettings.left_foot_convex_hull",
+       [](Settings& s) { s.left_foot_convex_hull *= 1e200; }},
+      {"WalkingSettings.obstacles[].x",
+       [](Settings& s) {
+         s.obstacles.push_back({1e300, 1.0, 1.0, 0.4});
+       }},
   };
   for (const auto& c : cases) {
     Settings s = walkgen::hrp2_settings();
@@ -101,6 +124,17 @@ TEST(WalkingSettings, BadValuesAreRejectedNamingTheKey) {
       EXPECT_NE(what.find("expected"), std::string::npos) << what;
     }
   }
+}
+
+// The bounds that validate() names are accepted at their edge: a user who needs them can use them.
+TEST(WalkingSettings, TheLimitsThemselvesAreAccepted) {
+  Settings s = walkgen::hrp2_settings();
+  s.sqp_iterations = walkgen::settings_limits::max_sqp_iterations;
+  s.sqp_corrections = walkgen::settings_limits::max_sqp_iterations;
+  s.nwsr = walkgen::settings_limits::max_active_set_changes;
+  s.n = walkgen::settings_limits::max_horizon;
+  EXPECT_NO_THROW(walkgen::validate(s));
+  EXPECT_EQ(s.planned_steps(), (1000 + 8 - 2) / 8);
 }
 
 TEST(Foot, OtherAndNames) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "support/expect_error.hpp"
 #include "support/walking_scenarios.hpp"
 
 namespace {
@@ -294,10 +295,13 @@ TEST(WalkingMpc, AnUnrecoverableStateFailsInsteadOfPlanningADivergentWalk) {
 // The real-time iteration linearises the rotated polygons at the previous plan; when a large
 // change of foot yaw leaves a violation above sqp_tolerance, correction iterations remove it.
 TEST(WalkingMpc, CorrectionIterationsBoundTheLinearisationError) {
+  // Solved is a promise (issue 21, defect 3): a plan beyond sqp_tolerance is not_converged.
   auto worst_of = [](const ScenarioRun& run) {
     double worst = 0;
     for (const auto& r : run.results) {
-      EXPECT_EQ(r.status, walkgen::MpcStatus::solved);
+      EXPECT_EQ(r.status, r.constraint_violation <= hrp2().sqp_tolerance
+                              ? walkgen::MpcStatus::solved
+                              : walkgen::MpcStatus::not_converged);
       worst = std::max(worst, r.constraint_violation);
     }
     return worst;
@@ -309,6 +313,7 @@ TEST(WalkingMpc, CorrectionIterationsBoundTheLinearisationError) {
     int corrected = 0;
     for (const auto& r : run.results) corrected += r.sqp_iterations > 1;
     EXPECT_LE(worst_of(run), hrp2().sqp_tolerance) << name;
+    for (const auto& r : run.results) EXPECT_EQ(r.status, walkgen::MpcStatus::solved) << name;
     EXPECT_GE(corrected, 1) << name;
     EXPECT_LE(corrected, 30) << name << ": corrections are the exception (≤ 15 %), not the rule";
     const ScenarioRun without = walkgen_test::run_scenario<16>(walkgen_test::scenario(name), plain);
@@ -416,6 +421,40 @@ TEST(WalkingMpc, RejectsNonFiniteAndOutOfRangeCommandsKeepingThePreviousOne) {
   EXPECT_EQ(mpc.command(), Eigen::Vector3d(0.1, 0.0, 0.1));
   EXPECT_EQ(mpc.solve().last_command, walkgen::CommandStatus::out_of_range);
   EXPECT_TRUE(mpc.plan().U.allFinite());
+}
+
+// Issue 21, defect 3 (reproducer mpc_far_state.cpp): a finite but absurd state (com_y = −1e30,
+// a feedback glitch) was accepted and the tick said solved with a violation of 1.2e38.
+TEST(WalkingMpc, ImplausibleStatesAreRejectedNamingTheLimit) {
+  for (const auto& settings : {hrp2(), walkgen::heicub_settings<double>()}) {
+    walkgen::WalkingMpc<double, 16> mpc(settings);
+    const auto start = mpc.state();
+    auto st = start;
+    for (double offset : {1e30, 1e6, 10.0, 2.5}) {
+      st = start;
+      st.com_y[0] -= offset;
+      walkgen_test::expect_invalid_argument([&] { mpc.set_state(st); },
+                                            {"WalkingMpc::set_state", "max_state_distance"});
+    }
+    st = start;
+    st.swing.x.position += 3.0;
+    walkgen_test::expect_invalid_argument([&] { mpc.set_state(st); }, {"swing foot"});
+    st = start;
+    st.com_x[1] = 6.0;
+    walkgen_test::expect_invalid_argument([&] { mpc.set_state(st); }, {"max_com_speed"});
+    st = start;
+    st.com_y[2] = -60.0;
+    walkgen_test::expect_invalid_argument([&] { mpc.set_state(st); }, {"max_com_acceleration"});
+    EXPECT_EQ(mpc.state().com_y[0], start.com_y[0]);  // left unchanged
+    // Within the limits, the honest outcome: an unrecoverable offset fails the QP, and a plan
+    // is solved only within sqp_tolerance.
+    st = start;
+    st.com_y[0] -= 1.0;
+    mpc.set_state(st);
+    const auto& r = mpc.solve();
+    EXPECT_NE(r.status, walkgen::MpcStatus::solved);
+    EXPECT_TRUE(mpc.plan().U.allFinite());
+  }
 }
 
 TEST(WalkingMpc, StateFeedbackIsCheckedAndUsed) {

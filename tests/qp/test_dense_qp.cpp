@@ -408,12 +408,65 @@ TEST(DenseQp, BadNumbersGiveInvalidInputNeverNan) {
   EXPECT_EQ(fresh.update(g, lb, ub), QpStatus::invalid_input);
 }
 
+// Issue 21, defect 2 (reproducer qp_tiny_hessian_fixed_vars.cpp of the reliability pass): with H
+// tiny against g, −H⁻¹g is huge and the active-set step onto l = u = −2 cancelled away every
+// digit, yet the status said solved (x = 5e182 at scale 1e-199, x = 0 for n = 1, h = 1e-17).
+// Solved must mean every constraint, active ones included, holds within tolerance.
+TEST(DenseQp, SolvedIsCheckedAgainstEveryConstraintWhenHIsTinyAgainstG) {
+  Eigen::Matrix3d H0;
+  H0 << 2.8, 2.7, 2.7, 2.7, 2.8, 2.7, 2.7, 2.7, 2.8;
+  const Eigen::Vector3d g(-3, -3, -3), fixed(-2, -2, -2);
+  int solved = 0;
+  for (double scale : {1.0, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16, 1e-100, 1e-150, 1e-199}) {
+    DenseQp<double> qp(3, 0);
+    ASSERT_EQ(qp.init(H0 * scale, g, Eigen::MatrixXd(0, 3), Eigen::VectorXd(0), Eigen::VectorXd(0),
+                      fixed, fixed),
+              QpStatus::unsolved);
+    const auto& r = qp.solve();
+    ASSERT_TRUE(r.x.allFinite()) << "scale " << scale;
+    if (r.status == QpStatus::solved) {
+      ++solved;
+      EXPECT_LE((r.x - fixed).lpNorm<Eigen::Infinity>(), 1e-9) << "scale " << scale;
+      EXPECT_LE(r.primal_residual, 1e-9) << "scale " << scale;
+    } else {
+      EXPECT_EQ(r.status, QpStatus::inaccurate) << "scale " << scale;
+      EXPECT_GT(std::string(r.message).size(), 0u);
+    }
+    // Iterative refinement on the active set recovers every scale down to 1e-16.
+    if (scale >= 1e-16) {
+      EXPECT_EQ(r.status, QpStatus::solved) << "scale " << scale;
+    }
+  }
+  EXPECT_GE(solved, 7);
+  // One variable: minimise ½hx² − 3x subject to x = −2.
+  for (double h : {1.0, 1e-12, 1e-17, 1e-200}) {
+    DenseQp<double> qp(1, 0);
+    const Eigen::VectorXd x_fixed = Eigen::VectorXd::Constant(1, -2.0);
+    ASSERT_EQ(
+        qp.init(Eigen::MatrixXd::Constant(1, 1, h), Eigen::VectorXd::Constant(1, -3.0),
+                Eigen::MatrixXd(0, 1), Eigen::VectorXd(0), Eigen::VectorXd(0), x_fixed, x_fixed),
+        QpStatus::unsolved);
+    const auto& r = qp.solve();
+    EXPECT_EQ(r.status, QpStatus::solved) << "h = " << h;
+    EXPECT_NEAR(r.x[0], -2.0, 1e-12) << "h = " << h;
+  }
+  // −H⁻¹g overflows (h = 1e-320, denormal): inaccurate with a finite x, never solved or inf.
+  DenseQp<double> qp(1, 0);
+  ASSERT_EQ(qp.init(Eigen::MatrixXd::Constant(1, 1, 1e-320), Eigen::VectorXd::Constant(1, -3.0),
+                    Eigen::MatrixXd(0, 1), Eigen::VectorXd(0), Eigen::VectorXd(0),
+                    Eigen::VectorXd::Constant(1, -2.0), Eigen::VectorXd::Constant(1, -2.0)),
+            QpStatus::unsolved);
+  EXPECT_EQ(qp.solve().status, QpStatus::inaccurate);
+  EXPECT_TRUE(qp.result().x.allFinite());
+}
+
 TEST(DenseQp, StatusNames) {
   EXPECT_STREQ(walkgen::to_string(QpStatus::solved), "solved");
   EXPECT_STREQ(walkgen::to_string(QpStatus::infeasible), "infeasible");
   EXPECT_STREQ(walkgen::to_string(QpStatus::max_iterations), "max_iterations");
   EXPECT_STREQ(walkgen::to_string(QpStatus::invalid_input), "invalid_input");
   EXPECT_STREQ(walkgen::to_string(QpStatus::unsolved), "unsolved");
+  EXPECT_STREQ(walkgen::to_string(QpStatus::inaccurate), "inaccurate");
 }
 
 }  // namespace

@@ -43,13 +43,17 @@
 
 namespace walkgen {
 
-/// What a tick of the loop ended with. Anything but ok or qp_failed stops the walk.
+/// What a tick of the loop ended with. Anything but ok, qp_failed or not_converged stops the
+/// walk.
 enum class LoopStatus : std::uint8_t {
-  ok,          ///< the tick's samples were executed
-  qp_failed,   ///< the NMPC kept its previous (shifted) plan, which was executed; see MpcStatus
-  fallen,      ///< the robot reports a fall (RobotStatus::fallen); the loop stops
-  diverged,    ///< the simulation diverged (RobotStatus::diverged); the loop stops
-  not_started  ///< tick() before start(), or after the robot stopped
+  ok,           ///< the tick's samples were executed
+  qp_failed,    ///< the NMPC kept its previous (shifted) plan, which was executed; see MpcStatus
+  fallen,       ///< the robot reports a fall (RobotStatus::fallen); the loop stops
+  diverged,     ///< the simulation diverged (RobotStatus::diverged); the loop stops
+  not_started,  ///< tick() before start(), or after the robot stopped
+  /// the NMPC's plan, executed, violates its nonlinear constraints by more than sqp_tolerance
+  /// (MpcStatus::not_converged; LoopTick::mpc and the generator's result say by how much)
+  not_converged,
 };
 
 /// The enumerator's name ("ok", ...), e.g. for logs; "unknown" for a value out of range.
@@ -65,6 +69,8 @@ constexpr const char* to_string(LoopStatus s) noexcept {
       return "diverged";
     case LoopStatus::not_started:
       return "not_started";
+    case LoopStatus::not_converged:
+      return "not_converged";
   }
   return "unknown";
 }
@@ -260,7 +266,9 @@ class WalkingLoop {
     }
     mpc_.advance();
     ++ticks_;
-    tick_.status = tick_.mpc == MpcStatus::solved ? LoopStatus::ok : LoopStatus::qp_failed;
+    tick_.status = tick_.mpc == MpcStatus::solved          ? LoopStatus::ok
+                   : tick_.mpc == MpcStatus::not_converged ? LoopStatus::not_converged
+                                                           : LoopStatus::qp_failed;
     return tick_;
   }
 

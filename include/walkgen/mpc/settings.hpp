@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -137,19 +138,34 @@ struct WalkingSettings {
   /// Further Gauss–Newton iterations, at most, when the plan violates the nonlinear
   /// constraints (rotated polygons) by more than sqp_tolerance after sqp_iterations: the
   /// linearisation error of a large change of foot yaw. 0 keeps exactly sqp_iterations.
-  int sqp_corrections = 2;
+  /// Gauss–Newton converges linearly at first: a cold start after a 0.1 m/s push violates the
+  /// polygons by 53, 14, 5.8, 2.7 and 0.14 mm after 1–5 iterations, hence 4 (issue 21).
+  int sqp_corrections = 4;
   /// [m] largest tolerated violation of the nonlinear constraints (a distance beyond a
   /// polygon edge or inside an obstacle's margin) before a correction iteration.
   Scalar sqp_tolerance = Scalar(1e-3);
 
-  /// Samples of the preview horizon per step, t_step / t (an integer after validate()).
-  int samples_per_step() const { return static_cast<int>(std::lround(t_step / t)); }
+  /// Plausibility limits of WalkingMpc::set_state(): a state beyond them is a feedback glitch,
+  /// not a walking robot, and is rejected with an error. [m] the largest horizontal distance of
+  /// the CoM, the swing foot and its origin from the support foot.
+  Scalar max_state_distance = Scalar(2);
+  /// [m/s] the largest CoM speed along x or y, and [m/s²] the largest CoM acceleration, that
+  /// set_state() accepts.
+  Scalar max_com_speed = Scalar(5), max_com_acceleration = Scalar(50);
+
+  /// Samples of the preview horizon per step, t_step / t (an integer after validate(), which
+  /// also bounds it by settings_limits::max_samples_per_step).
+  int samples_per_step() const {
+    const Scalar ratio = t_step / t;
+    return ratio >= Scalar(0) && ratio <= Scalar(1 << 30) ? static_cast<int>(std::lround(ratio))
+                                                          : 0;
+  }
   /// Footsteps planned within the horizon (N_f in the thesis): the most steps after the current
   /// one that N samples can reach, ⌊(N + S − 2) / S⌋ with S = samples_per_step(); the thesis's
   /// ⌊N T / t_step⌋ for a whole number of steps.
   int planned_steps() const {
-    const int S = samples_per_step();
-    return (n + S - 2) / S;
+    const long long S = samples_per_step();
+    return S > 0 ? static_cast<int>((static_cast<long long>(n) + S - 2) / S) : 0;
   }
 };
 
@@ -197,6 +213,20 @@ WalkingSettings<Scalar> heicub_settings() {
   return s;
 }
 
+/// Ranges that validate() enforces on the integer settings and on the magnitudes that the QP
+/// squares or sums (beyond them int arithmetic would overflow or the QP lose every digit).
+namespace settings_limits {
+constexpr int max_horizon = 1000;                ///< n: preview samples (the QP has ~2n variables)
+constexpr int max_samples_per_step = 1000;       ///< t_step / t
+constexpr int max_sqp_iterations = 100;          ///< sqp_iterations, and sqp_corrections alike
+constexpr int max_active_set_changes = 1000000;  ///< nwsr
+constexpr int max_still_horizons = 1000000;      ///< n_still
+constexpr double max_position = 1e6;  ///< [m] |com|, |foot|, obstacle centres, radii, sizes
+constexpr double max_period = 1e3;    ///< [s] t, t_step, t_ds, t_feedback, command_period
+constexpr double max_weight = 1e12;   ///< alpha, beta, gamma, step_velocity_weight, ...
+constexpr double min_gamma = 1e-12;   ///< gamma keeps H definite; smaller leaves it singular
+}  // namespace settings_limits
+
 namespace detail {
 template <typename Scalar>
 bool is_multiple(Scalar value, Scalar period) {
@@ -209,9 +239,29 @@ bool is_multiple(Scalar value, Scalar period) {
 /// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
 template <typename Scalar>
 void validate(const WalkingSettings<Scalar>& s) {
-  check_argument(s.n >= 1, "WalkingSettings.n", "a horizon of at least 1 interval", s.n);
-  check_positive("WalkingSettings.t", s.t);
-  check_positive("WalkingSettings.t_step", s.t_step);
+  namespace lim = settings_limits;
+  auto check_count = [](const char* where, int value, int lo, int hi) {
+    check_argument(value >= lo && value <= hi, where,
+                   "a count in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", value);
+  };
+  auto check_up_to = [](const char* where, Scalar value, double hi, bool zero_ok) {
+    const bool ok = std::isfinite(value) && (zero_ok ? value >= Scalar(0) : value > Scalar(0)) &&
+                    value <= Scalar(hi);
+    if (!ok) {  // the message only on failure
+      std::ostringstream range;
+      range << (zero_ok ? "a value in [0, " : "a value in (0, ") << hi << "]";
+      check_argument(false, where, range.str(), value);
+    }
+  };
+  auto check_position = [](const char* where, Scalar value) {
+    check_argument(std::isfinite(value) && std::abs(value) <= Scalar(lim::max_position), where,
+                   "a finite value with |value| <= 1e6", value);
+  };
+  check_count("WalkingSettings.n", s.n, 1, lim::max_horizon);
+  check_up_to("WalkingSettings.t", s.t, lim::max_period, false);
+  check_up_to("WalkingSettings.t_step", s.t_step, lim::max_period, false);
+  check_argument(s.t_step / s.t <= Scalar(lim::max_samples_per_step), "WalkingSettings.t_step",
+                 "at most 1000 samples of t = " + std::to_string(s.t) + " s per step", s.t_step);
   check_argument(s.t_step >= s.t && detail::is_multiple(s.t_step, s.t), "WalkingSettings.t_step",
                  "a whole multiple of t = " + std::to_string(s.t) + " s", s.t_step);
   check_argument(
@@ -224,54 +274,79 @@ void validate(const WalkingSettings<Scalar>& s) {
                  "the ZMP moves to the new foot during the first interval of every step");
   check_argument(s.t_ds < s.t_step, "WalkingSettings.t_ds", "a double support shorter than t_step",
                  s.t_ds);
+  check_up_to("WalkingSettings.t_ds", s.t_ds, lim::max_period, false);
   check_positive("WalkingSettings.command_period", s.command_period);
   check_argument(s.command_period <= s.t && detail::is_multiple(s.t, s.command_period),
                  "WalkingSettings.command_period", "a period that divides t evenly",
                  s.command_period);
-  check_positive("WalkingSettings.t_feedback", s.t_feedback);
-  check_argument(s.n_still >= 0, "WalkingSettings.n_still", "a count >= 0", s.n_still);
-  check_non_negative("WalkingSettings.step_height", s.step_height);
-  check_positive("WalkingSettings.foot_width", s.foot_width);
-  check_positive("WalkingSettings.foot_length", s.foot_length);
-  check_positive("WalkingSettings.foot_distance", s.foot_distance);
-  check_non_negative("WalkingSettings.security_margin[0]", s.security_margin[0]);
-  check_non_negative("WalkingSettings.security_margin[1]", s.security_margin[1]);
+  check_up_to("WalkingSettings.t_feedback", s.t_feedback, lim::max_period, false);
+  check_count("WalkingSettings.n_still", s.n_still, 0, lim::max_still_horizons);
+  check_up_to("WalkingSettings.step_height", s.step_height, lim::max_position, true);
+  check_up_to("WalkingSettings.foot_width", s.foot_width, lim::max_position, false);
+  check_up_to("WalkingSettings.foot_length", s.foot_length, lim::max_position, false);
+  check_up_to("WalkingSettings.foot_distance", s.foot_distance, lim::max_position, false);
+  check_up_to("WalkingSettings.security_margin[0]", s.security_margin[0], lim::max_position, true);
+  check_up_to("WalkingSettings.security_margin[1]", s.security_margin[1], lim::max_position, true);
   check_argument(Scalar(2) * s.security_margin[0] < s.foot_length,
                  "WalkingSettings.security_margin[0]", "less than half the foot length",
                  s.security_margin[0], "the shrunk support polygon would be empty");
   check_argument(Scalar(2) * s.security_margin[1] < s.foot_width,
                  "WalkingSettings.security_margin[1]", "less than half the foot width",
                  s.security_margin[1], "the shrunk support polygon would be empty");
-  check_convex_polygon("WalkingSettings.left_foot_convex_hull", s.left_foot_convex_hull);
-  check_convex_polygon("WalkingSettings.right_foot_convex_hull", s.right_foot_convex_hull);
+  auto check_polygon = [](const char* where, const auto& vertices) {
+    check_argument(
+        vertices.allFinite() && (vertices.array().abs() <= Scalar(lim::max_position)).all(), where,
+        "vertices with |coordinate| <= 1e6 m", "NaN, inf or larger");
+    check_convex_polygon(where, vertices);
+  };
+  check_polygon("WalkingSettings.left_foot_convex_hull", s.left_foot_convex_hull);
+  check_polygon("WalkingSettings.right_foot_convex_hull", s.right_foot_convex_hull);
   check_argument(s.com_x.allFinite() && s.com_y.allFinite() && s.com_q.allFinite(),
                  "WalkingSettings.com_x/com_y/com_q", "finite values", "NaN or inf");
-  check_positive("WalkingSettings.com_z", s.com_z);
-  check_argument(std::isfinite(s.foot_x) && std::isfinite(s.foot_y) && std::isfinite(s.foot_q),
-                 "WalkingSettings.foot_x/foot_y/foot_q", "finite values", "NaN or inf");
-  check_positive("WalkingSettings.gravity", s.gravity);
-  check_non_negative("WalkingSettings.alpha", s.alpha);
-  check_non_negative("WalkingSettings.beta", s.beta);
-  check_non_negative("WalkingSettings.step_velocity_weight", s.step_velocity_weight);
-  check_positive("WalkingSettings.gamma", s.gamma);  // strict convexity of the QP
-  check_argument(s.nwsr >= 1, "WalkingSettings.nwsr", "at least 1 active-set change", s.nwsr);
-  check_positive("WalkingSettings.max_relative_yaw", s.max_relative_yaw);
-  check_positive("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate);
-  check_argument(s.sqp_iterations >= 1, "WalkingSettings.sqp_iterations", "at least 1",
-                 s.sqp_iterations);
-  check_argument(s.sqp_corrections >= 0, "WalkingSettings.sqp_corrections", "a count >= 0",
-                 s.sqp_corrections);
-  check_argument(std::isfinite(s.sqp_tolerance) && s.sqp_tolerance > Scalar(0),
-                 "WalkingSettings.sqp_tolerance", "a finite tolerance > 0 [m]", s.sqp_tolerance);
-  check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all(),
-                 "WalkingSettings.max_command", "finite limits >= 0", "NaN, inf or negative");
-  check_non_negative("WalkingSettings.footstep_regularization", s.footstep_regularization);
-  if (s.zmp_polygon.rows() > 0) check_convex_polygon("WalkingSettings.zmp_polygon", s.zmp_polygon);
+  check_position("WalkingSettings.com_x[0]", s.com_x[0]);
+  check_position("WalkingSettings.com_y[0]", s.com_y[0]);
+  check_up_to("WalkingSettings.com_z", s.com_z, lim::max_position, false);
+  check_position("WalkingSettings.foot_x", s.foot_x);
+  check_position("WalkingSettings.foot_y", s.foot_y);
+  check_argument(std::isfinite(s.foot_q), "WalkingSettings.foot_q", "a finite yaw", s.foot_q);
+  check_up_to("WalkingSettings.gravity", s.gravity, 1e3, false);
+  check_up_to("WalkingSettings.alpha", s.alpha, lim::max_weight, true);
+  check_up_to("WalkingSettings.beta", s.beta, lim::max_weight, true);
+  check_up_to("WalkingSettings.step_velocity_weight", s.step_velocity_weight, lim::max_weight,
+              true);
+  check_up_to("WalkingSettings.gamma", s.gamma, lim::max_weight, false);
+  check_argument(s.gamma >= Scalar(lim::min_gamma), "WalkingSettings.gamma",
+                 "a jerk weight >= 1e-12 (it keeps the QP strictly convex)", s.gamma);
+  check_count("WalkingSettings.nwsr", s.nwsr, 1, lim::max_active_set_changes);
+  check_up_to("WalkingSettings.max_relative_yaw", s.max_relative_yaw, 1e3, false);
+  check_up_to("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate, 1e3, false);
+  check_count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::max_sqp_iterations);
+  check_count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::max_sqp_iterations);
+  check_up_to("WalkingSettings.sqp_tolerance", s.sqp_tolerance, lim::max_position, false);
+  check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all() &&
+                     (s.max_command.array() <= Scalar(1e3)).all(),
+                 "WalkingSettings.max_command", "finite limits in [0, 1e3]",
+                 "NaN, inf, negative or larger");
+  check_up_to("WalkingSettings.footstep_regularization", s.footstep_regularization, lim::max_weight,
+              true);
+  check_up_to("WalkingSettings.max_state_distance", s.max_state_distance, lim::max_position, false);
+  check_up_to("WalkingSettings.max_com_speed", s.max_com_speed, 1e3, false);
+  check_up_to("WalkingSettings.max_com_acceleration", s.max_com_acceleration, 1e4, false);
+  check_argument(std::hypot(s.com_x[0] - s.foot_x, s.com_y[0] - s.foot_y) <= s.max_state_distance &&
+                     std::abs(s.com_x[1]) <= s.max_com_speed &&
+                     std::abs(s.com_y[1]) <= s.max_com_speed &&
+                     std::abs(s.com_x[2]) <= s.max_com_acceleration &&
+                     std::abs(s.com_y[2]) <= s.max_com_acceleration,
+                 "WalkingSettings.com_x/com_y",
+                 "an initial CoM within max_state_distance of "
+                 "(foot_x, foot_y), max_com_speed and max_com_acceleration",
+                 "an implausible initial state");
+  if (s.zmp_polygon.rows() > 0) check_polygon("WalkingSettings.zmp_polygon", s.zmp_polygon);
   for (const auto& o : s.obstacles) {
-    check_argument(std::isfinite(o.x) && std::isfinite(o.y), "WalkingSettings.obstacles[].x/y",
-                   "a finite centre", "NaN or inf");
-    check_positive("WalkingSettings.obstacles[].radius", o.radius);
-    check_non_negative("WalkingSettings.obstacles[].margin", o.margin);
+    check_position("WalkingSettings.obstacles[].x", o.x);
+    check_position("WalkingSettings.obstacles[].y", o.y);
+    check_up_to("WalkingSettings.obstacles[].radius", o.radius, lim::max_position, false);
+    check_up_to("WalkingSettings.obstacles[].margin", o.margin, lim::max_position, true);
   }
 }
 

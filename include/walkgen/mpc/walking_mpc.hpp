@@ -38,6 +38,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
@@ -52,8 +53,15 @@ namespace walkgen {
 
 /// Outcome of one generator tick.
 enum class MpcStatus : std::uint8_t {
-  solved,     ///< every SQP iteration's QP solved; the plan is the new solution
+  /// Every SQP iteration's QP solved and the plan meets the nonlinear constraints within
+  /// sqp_tolerance (Result::constraint_violation); the plan is the new solution.
+  solved,
   qp_failed,  ///< a QP failed (see Result::qp_status); the plan is the previous one, shifted
+  /// Every QP solved, but after sqp_iterations + sqp_corrections Gauss–Newton iterations the
+  /// plan still violates the nonlinear constraints (rotated polygons, obstacle margins) by
+  /// Result::constraint_violation > sqp_tolerance. The plan is that last iterate: the best
+  /// available and executable, but outside its constraints by that much.
+  not_converged,
 };
 
 /// What happened to a velocity command.
@@ -63,13 +71,15 @@ enum class CommandStatus : std::uint8_t {
   out_of_range,  ///< beyond WalkingSettings::max_command: rejected, the previous command stays
 };
 
-/// The enumerator's name ("solved", "qp_failed"), e.g. for logs; "unknown" out of range.
+/// The enumerator's name ("solved", ...), e.g. for logs; "unknown" out of range.
 constexpr const char* to_string(MpcStatus s) noexcept {
   switch (s) {
     case MpcStatus::solved:
       return "solved";
     case MpcStatus::qp_failed:
       return "qp_failed";
+    case MpcStatus::not_converged:
+      return "not_converged";
   }
   return "unknown";
 }
@@ -259,8 +269,11 @@ class WalkingMpc {
   const Vector3& command() const { return command_; }
 
   /// Overwrites the state (feedback, section 6.3).
-  /// @throws walkgen::invalid_argument if a value is non-finite or the phase is out of range
-  ///         (the state is left unchanged).
+  /// @throws walkgen::invalid_argument if a value is non-finite, the phase is out of range, or
+  ///         the state is implausible: the CoM, the swing foot or its origin farther than
+  ///         settings().max_state_distance from the support foot, the CoM faster than
+  ///         max_com_speed or accelerating more than max_com_acceleration (a feedback glitch;
+  ///         the state is left unchanged).
   void set_state(const State& state) {
     if (state.phase < 0 || state.phase >= S_) {  // the message is built only on failure
       check_argument(false, "WalkingMpc::set_state: phase",
@@ -268,6 +281,14 @@ class WalkingMpc {
     }
     check_argument(finite_state(state), "WalkingMpc::set_state", "finite values", "NaN or inf",
                    "check the feedback (forward kinematics) that produced the state");
+    if (const char* what = implausible(state)) {
+      std::ostringstream got;
+      got << what << " (CoM at (" << state.com_x[0] << ", " << state.com_y[0]
+          << ") m, support foot at (" << state.support.x << ", " << state.support.y << ") m)";
+      check_argument(false, "WalkingMpc::set_state", "a plausible walking state", got.str(),
+                     "check the feedback; the limits are WalkingSettings::max_state_distance, "
+                     "max_com_speed and max_com_acceleration");
+    }
     state_ = state;
   }
   /// Restarts from `state`: also forgets the plan and the QP's warm start.
@@ -331,6 +352,12 @@ class WalkingMpc {
       }
       plan_.U = qr.x;
       result_.constraint_violation = violation(plan_.U);
+    }
+    // Solved is a promise: the plan meets its nonlinear constraints within sqp_tolerance.
+    if (result_.status == MpcStatus::solved &&
+        !(result_.constraint_violation <= s_.sqp_tolerance)) {
+      result_.status = MpcStatus::not_converged;
+      result_.message = "the plan violates its nonlinear constraints beyond sqp_tolerance";
     }
     return result_;
   }
@@ -482,6 +509,26 @@ class WalkingMpc {
       hull_b_[f].resize(hull.rows());
       polygon_halfplanes(hull, hull_A_[f], hull_b_[f]);
     }
+  }
+
+  /// What makes a finite state implausible (see set_state()), or nullptr.
+  const char* implausible(const State& st) const {
+    const auto far = [&](Scalar x, Scalar y) {
+      return std::hypot(x - st.support.x, y - st.support.y) > s_.max_state_distance;
+    };
+    if (far(st.com_x[0], st.com_y[0])) return "the CoM farther than max_state_distance";
+    if (far(st.swing.x.position, st.swing.y.position) ||
+        far(st.swing_origin.x, st.swing_origin.y)) {
+      return "the swing foot farther than max_state_distance";
+    }
+    if (std::abs(st.com_x[1]) > s_.max_com_speed || std::abs(st.com_y[1]) > s_.max_com_speed) {
+      return "a CoM speed above max_com_speed";
+    }
+    if (std::abs(st.com_x[2]) > s_.max_com_acceleration ||
+        std::abs(st.com_y[2]) > s_.max_com_acceleration) {
+      return "a CoM acceleration above max_com_acceleration";
+    }
+    return nullptr;
   }
 
   static bool finite_state(const State& st) {

@@ -39,11 +39,16 @@ namespace walkgen {
 
 /// Outcome of a QP solve (or of the validation in init()/update()).
 enum class QpStatus : std::uint8_t {
-  unsolved,        ///< solve() has not run since the last init()/update().
-  solved,          ///< KKT conditions hold within the tolerances.
+  unsolved,  ///< solve() has not run since the last init()/update().
+  /// KKT conditions hold within the tolerances: every constraint, active ones included, is
+  /// checked before this is returned (see QpSettings::primal_tolerance).
+  solved,
   infeasible,      ///< the constraints admit no point (x is the last iterate, not a solution).
   max_iterations,  ///< the iteration limit was reached (x is the last iterate, not a solution).
   invalid_input,   ///< the data are unusable (see QpResult::message); x is zero.
+  /// Rounding left a constraint violated beyond the tolerance, e.g. H tiny against g, so that
+  /// −H⁻¹g is huge or overflows (x is the last iterate, or zero if not finite; not a solution).
+  inaccurate,
 };
 
 /// The enumerator's name ("solved", ...), e.g. for logs; "unknown" for a value out of range.
@@ -59,6 +64,8 @@ constexpr const char* to_string(QpStatus status) noexcept {
       return "max_iterations";
     case QpStatus::invalid_input:
       return "invalid_input";
+    case QpStatus::inaccurate:
+      return "inaccurate";
   }
   return "unknown";
 }
@@ -78,6 +85,8 @@ struct QpSettings {
   Scalar regularization = Scalar(0);
   /// A row is violated when its distance to the feasible half-space, (lb_i − a_iᵀx)/‖a_i‖ or
   /// (a_iᵀx − ub_i)/‖a_i‖, exceeds primal_tolerance · (1 + |bound|/‖a_i‖ + ‖x‖∞). Bounds alike.
+  /// QpStatus::solved promises that no constraint, active or not, is violated by more than
+  /// 100 × this (the rounding level that the active-set loop tolerates in degenerate corners).
   Scalar primal_tolerance = Scalar(1e4) * Eigen::NumTraits<Scalar>::epsilon();
   /// A constraint normal whose component outside the span of the active normals is below
   /// dependency_tolerance times its length (in the metric of H⁻¹) counts as linearly dependent.
@@ -347,6 +356,14 @@ class DenseQp {
   int find_violated(int* sign, Scalar* max_violation);
   void finish(QpStatus status, const char* message);
   bool rebuild_factorization(Index count);
+  bool within_tolerance();
+  /// A solve whose outputs overflowed: solved becomes inaccurate.
+  void overflowed() {
+    if (result_.status != QpStatus::solved) return;
+    result_.status = QpStatus::inaccurate;
+    result_.message = "the problem's scale overflows double precision (rescale H, g, A)";
+  }
+  void refine_active_set();
   // Copies the first count active constraints to previous_active_ for rebuild_factorization().
   // (The explicit bound keeps GCC 12 from warning falsely about fixed-size buffers.)
   void save_active_set(Index count) {
@@ -676,6 +693,53 @@ void DenseQp<Scalar, Vars, Rows>::solve_active_set() {
   lambda_.head(q_) = w;
 }
 
+// Whether x is finite and every constraint, active and ignored ones included, holds within
+// 100 × the primal tolerance (violation_is_rounding's level); sets result_.primal_residual.
+template <typename Scalar, int Vars, int Rows>
+bool DenseQp<Scalar, Vars, Rows>::within_tolerance() {
+  const auto& x = result_.x;
+  if (!detail::all_finite(x)) return false;
+  const Scalar loose = Scalar(100) * settings_.primal_tolerance;
+  const Scalar xscale = Scalar(1) + x.template lpNorm<Eigen::Infinity>();
+  bool ok = true;
+  Scalar max_abs_viol = Scalar(0);
+  if (m_ > 0) Ax_.noalias() = A_ * x;
+  for (Index i = 0; i < m_; ++i) {
+    const Scalar viol = std::max(lb_[i] - Ax_[i], Ax_[i] - ub_[i]);
+    if (!(viol > Scalar(0))) continue;
+    max_abs_viol = std::max(max_abs_viol, viol);
+    if (row_norm_[i] == Scalar(0)) continue;  // a zero row constrains nothing it can reach
+    const Scalar bound = lb_[i] - Ax_[i] > Ax_[i] - ub_[i] ? lb_[i] : ub_[i];
+    ok = ok && viol / row_norm_[i] <= loose * (xscale + std::abs(bound) / row_norm_[i]);
+  }
+  for (Index j = 0; j < n_; ++j) {
+    const Scalar viol = std::max(l_[j] - x[j], x[j] - u_[j]);
+    if (!(viol > Scalar(0))) continue;
+    max_abs_viol = std::max(max_abs_viol, viol);
+    const Scalar bound = l_[j] - x[j] > x[j] - u_[j] ? l_[j] : u_[j];
+    ok = ok && viol <= loose * (xscale + std::abs(bound));
+  }
+  result_.primal_residual = max_abs_viol;
+  return ok;
+}
+
+// One step of iterative refinement on the active set's equations Nᵀx = b: with r = b − Nᵀx,
+// x += J₁R⁻ᵀr and λ += R⁻¹R⁻ᵀr (the KKT system's correction, which keeps Hx + g = Nλ).
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::refine_active_set() {
+  if (q_ == 0) return;
+  auto w = r_.head(q_);
+  for (Index k = 0; k < q_; ++k) {
+    w[k] =
+        bound_of(active_[k], active_sign_[k]) - normal_dot(active_[k], active_sign_[k], result_.x);
+  }
+  const auto Rq = R_.topLeftCorner(q_, q_);
+  Rq.transpose().template triangularView<Eigen::Lower>().solveInPlace(w);
+  result_.x.noalias() += J_.leftCols(q_) * w;
+  Rq.template triangularView<Eigen::Upper>().solveInPlace(w);
+  lambda_.head(q_) += w;
+}
+
 // Drops the most negative inequality multiplier until none is negative (warm start only).
 template <typename Scalar, int Vars, int Rows>
 bool DenseQp<Scalar, Vars, Rows>::drop_negative_multipliers() {
@@ -743,6 +807,7 @@ int DenseQp<Scalar, Vars, Rows>::find_violated(int* sign, Scalar* max_violation)
 
 template <typename Scalar, int Vars, int Rows>
 void DenseQp<Scalar, Vars, Rows>::finish(QpStatus status, const char* message) {
+  if (!detail::all_finite(result_.x)) result_.x.setZero();  // an overflowed iterate: never NaN out
   result_.status = status;
   result_.message = message;
   result_.active_set_size = static_cast<int>(q_);
@@ -761,6 +826,13 @@ void DenseQp<Scalar, Vars, Rows>::finish(QpStatus status, const char* message) {
   }
   have_previous_ = true;
   cache_valid_ = true;
+  // Finite data whose products overflow (e.g. H ~ 1e-150 against g ~ 1e150) can leave the
+  // multipliers or the objective non-finite: never report those, never call them solved.
+  if (!detail::all_finite(result_.y) || !detail::all_finite(result_.z)) {
+    result_.y.setZero();
+    result_.z.setZero();
+    overflowed();
+  }
   if (!settings_.compute_residuals) return;
   const auto& x = result_.x;
   step_.noalias() = H_.template selfadjointView<Eigen::Lower>() * x;  // Hx
@@ -780,6 +852,11 @@ void DenseQp<Scalar, Vars, Rows>::finish(QpStatus status, const char* message) {
   }
   result_.dual_residual = step_.template lpNorm<Eigen::Infinity>();
   result_.complementarity = compl_max;
+  if (!std::isfinite(result_.objective) || !std::isfinite(result_.dual_residual) ||
+      !std::isfinite(result_.complementarity)) {
+    result_.objective = result_.dual_residual = result_.complementarity = kInf;
+    overflowed();
+  }
 }
 
 // Factorises, from J0, the equalities and then the first `count` constraints listed in
@@ -837,6 +914,14 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
   tmp_.noalias() = J0_.transpose().template triangularView<Eigen::Lower>() * g_;
   x0_.noalias() = J0_.template triangularView<Eigen::Upper>() * tmp_;
   x0_ = -x0_;
+  if (!detail::all_finite(x0_)) {
+    // H is tiny against g: the unconstrained minimiser overflows and no step can be trusted.
+    result_.x.setZero();
+    q_ = 0;
+    finish(QpStatus::inaccurate, "-H^-1 g overflows (H is tiny against g; rescale the problem)");
+    have_previous_ = cache_valid_ = false;
+    return result_;
+  }
 
   add_count_.setZero();
   const bool warm = settings_.warm_start && have_previous_;
@@ -869,6 +954,14 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
         solve_active_set();
         refined = true;
         continue;
+      }
+      // find_violated() skips the active constraints: verify every constraint before calling
+      // x a solution. Where cancellation against a huge x0 = −H⁻¹g left an active constraint
+      // off its bound, refine the active set's equations (at most twice).
+      for (int pass = 0; pass < 2 && !within_tolerance(); ++pass) refine_active_set();
+      if (!within_tolerance()) {
+        finish(QpStatus::inaccurate, "rounding left a constraint violated beyond the tolerance");
+        return result_;
       }
       finish(QpStatus::solved, "");
       return result_;
@@ -946,6 +1039,12 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
           finish(QpStatus::infeasible, "the constraints are inconsistent");
           return result_;
         }
+      }
+      if (std::isnan(t2) || (drop < 0 && !(!dep && t2 <= t1))) {
+        // Overflow made the step length NaN (e.g. inf/inf): no constraint can be added or
+        // dropped safely.
+        finish(QpStatus::inaccurate, "the active-set step overflowed (rescale H, g, A)");
+        return result_;
       }
       const Scalar t = std::min(t1, t2);
       ++result_.iterations;
