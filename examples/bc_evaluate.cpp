@@ -144,6 +144,16 @@ int main(int argc, char** argv) {
       const auto scene = walkgen::make_navigation_scene(task, seed + std::uint32_t(l));
       walkgen_test::ScriptedExpert scripted(scene, max_command);
       std::unique_ptr<walkgen::DemonstrationRecorder> recorder;
+      if (!dagger.empty() && network) {
+        try {  // refuses an episode the folder already holds
+          recorder = std::make_unique<walkgen::DemonstrationRecorder>(
+              dagger,
+              std::string("dagger_") + walkgen::to_string(task) + "_" + std::to_string(scene.seed));
+        } catch (const walkgen::invalid_argument& e) {
+          std::fprintf(stderr, "bc_evaluate: %s\n", e.what());
+          return 2;
+        }
+      }
       double inference_s = 0.0;
       long frames = 0;
       if (network) network->reset();
@@ -170,10 +180,7 @@ int main(int argc, char** argv) {
           [&] {
             walkgen_test::NavigationOptions options;
             options.time_limit = time_limit;
-            if (!dagger.empty() && network) {
-              recorder = std::make_unique<walkgen::DemonstrationRecorder>(
-                  dagger, std::string("dagger_") + walkgen::to_string(task) + "_" +
-                              std::to_string(scene.seed));
+            if (recorder) {
               options.recorder = recorder.get();
               options.label = [&](const walkgen_test::NavigationObservation& o) {
                 return scripted(o);

@@ -15,7 +15,9 @@
 //
 // Prints each pair's re-projection errors, the per-camera and stereo RMS, the mean epipolar
 // error, the intrinsics, the baseline and the rectified projections, and writes the calibration
-// as YAML (walkgen::save_stereo_calibration; walkgen::load_stereo_calibration reads it back).
+// as YAML (walkgen::save_stereo_calibration; walkgen::load_stereo_calibration reads it back). The
+// file is replaced atomically and ends with the marker `complete: 1` (docs/depth.md): an
+// interrupted run leaves the previous calibration, never a truncated one.
 // --help lists the options. Exit code 0; 1 with the reason on stderr (unreadable images, no
 // board, an unwritable file); 2 on a bad command line (one line on stderr).
 #include <algorithm>

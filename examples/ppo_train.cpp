@@ -4,9 +4,10 @@
 //   ppo_train nmpc [options]        the NMPC environment of §11.2.2 (--obstacles K: beyond it)
 //
 // Training prints one line per epoch (epoch, mean reward, wins/losses, σ), writes
-// <out>/learning_<env>.csv, saves the policy as TorchScript (<out>/ppo_<env>.pt), then tests
-// it: benchmark: 10 runs of 10 000 steps of the policy mean (wins, losses); nmpc: 100 held-out
-// goals all around the robot (reached, failed, footsteps inside obstacles) and the
+// <out>/learning_<env>.csv, saves the policy as TorchScript (<out>/ppo_<env>.pt; each better
+// epoch replaces it atomically, so a run stopped during a save leaves the last good one), then
+// tests it: benchmark: 10 runs of 10 000 steps of the policy mean (wins, losses); nmpc: 100
+// held-out goals all around the robot (reached, failed, footsteps inside obstacles) and the
 // trajectories of four goals (figure 11.19) in <out>/trajectories_<env>.csv.
 // --policy FILE skips the training and tests a saved policy. --plot draws the PNGs through
 // python/plot_learning.py.
@@ -72,7 +73,8 @@ std::string env_name(const Options& o) {
 
 // Trains for o.epochs epochs of o.steps steps; writes the CSV log. With a `validate` score
 // (higher is better, e.g. test-mode wins on a validation environment), the policy of the best
-// epoch is kept (the thesis also kept its best network); otherwise the last one. Saves it.
+// epoch is kept (the thesis also kept its best network); otherwise the last one. Saves it
+// (TorchPpo::save replaces the file atomically: a crash mid-save leaves the previous policy).
 template <class Env>
 void train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, int rollout_steps,
            walkgen::StepPool& pool, const Options& o, const std::string& policy_path,

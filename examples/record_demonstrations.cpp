@@ -5,7 +5,8 @@
 // (walkgen::DemonstrationRecorder: PNG files and index.txt).
 //
 //   record_demonstrations --out DIR [--episodes N] [--seed S] [--tasks LIST] [--noise W]
-//     --out DIR     the dataset folder (required; episodes are added to its index.txt)
+//     --out DIR     the dataset folder (required; episodes are added to its index.txt; an
+//                   episode the folder already holds is refused, exit status 2)
 //     --episodes N  episodes, >= 1, cycling through the tasks (default 6)
 //     --seed S      seed of the first layout; episode e uses S + e (default 1000)
 //     --tasks LIST  comma-separated: straight,curved,obstacle,scan,dynamic,distractor (default all)
@@ -22,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -61,8 +63,15 @@ int main(int argc, char** argv) {
     const walkgen::NavigationTask task = tasks[std::size_t(e) % tasks.size()];
     const walkgen::NavigationScene scene =
         walkgen::make_navigation_scene(task, seed + std::uint32_t(e));
-    walkgen::DemonstrationRecorder recorder(
-        out, std::string(walkgen::to_string(task)) + "_" + std::to_string(scene.seed));
+    std::optional<walkgen::DemonstrationRecorder> recorder_slot;
+    try {  // refuses an episode the folder already holds
+      recorder_slot.emplace(
+          out, std::string(walkgen::to_string(task)) + "_" + std::to_string(scene.seed));
+    } catch (const walkgen::invalid_argument& e) {
+      std::fprintf(stderr, "record_demonstrations: %s\n", e.what());
+      return 2;
+    }
+    walkgen::DemonstrationRecorder& recorder = *recorder_slot;
     walkgen_test::ScriptedExpert expert(scene, walkgen::heicub_settings().max_command);
     walkgen_test::NavigationOptions options;
     options.recorder = &recorder;

@@ -101,6 +101,10 @@ TEST(WalkingSettings, BadValuesAreRejectedNamingTheKey) {
       {"WalkingSettings.n_still", [](Settings& s) { s.n_still = std::numeric_limits<int>::max(); }},
       {"WalkingSettings.nwsr", [](Settings& s) { s.nwsr = std::numeric_limits<int>::max(); }},
       {"WalkingSettings.gamma", [](Settings& s) { s.gamma = 1e-300; }},
+      {"WalkingSettings.t", [](Settings& s) { s.t = 1e-300; }},  // H overflows: NaN in the QP
+      {"WalkingSettings.command_period", [](Settings& s) { s.command_period = 5e-324; }},
+      {"WalkingSettings.cpu_time", [](Settings& s) { s.cpu_time = -5; }},
+      {"WalkingSettings.sqp_tolerance", [](Settings& s) { s.sqp_tolerance = 1e-300; }},
       {"WalkingSettings.alpha", [](Settings& s) { s.alpha = 1e300; }},
       {"WalkingSettings.com_x[0]", [](Settings& s) { s.com_x[0] = 1e30; }},
       {"WalkingSettings.foot_y", [](Settings& s) { s.foot_y = -1e200; }},
@@ -129,10 +133,10 @@ TEST(WalkingSettings, BadValuesAreRejectedNamingTheKey) {
 // The bounds that validate() names are accepted at their edge: a user who needs them can use them.
 TEST(WalkingSettings, TheLimitsThemselvesAreAccepted) {
   Settings s = walkgen::hrp2_settings();
-  s.sqp_iterations = walkgen::settings_limits::max_sqp_iterations;
-  s.sqp_corrections = walkgen::settings_limits::max_sqp_iterations;
-  s.nwsr = walkgen::settings_limits::max_active_set_changes;
-  s.n = walkgen::settings_limits::max_horizon;
+  s.sqp_iterations = walkgen::settings_limits::kMaxSqpIterations;
+  s.sqp_corrections = walkgen::settings_limits::kMaxSqpIterations;
+  s.nwsr = walkgen::settings_limits::kMaxActiveSetChanges;
+  s.n = walkgen::settings_limits::kMaxHorizon;
   EXPECT_NO_THROW(walkgen::validate(s));
   EXPECT_EQ(s.planned_steps(), (1000 + 8 - 2) / 8);
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <walkgen/opencv/demonstration_recorder.hpp>
@@ -86,6 +88,75 @@ TEST(DemonstrationRecorder, BadInputAndMalformedIndexesGiveClearErrors) {
                                         {"index.txt:2", "v_x v_y omega"});
   walkgen_test::expect_invalid_argument(
       [&] { return walkgen::read_demonstration_index(folder + "/nowhere"); }, {"missing"});
+}
+
+// Every file under `folder` with its bytes.
+std::map<std::string, std::string> snapshot(const std::string& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(folder)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    files[e.path().string()] =
+        std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  return files;
+}
+
+// The files that differ between two snapshots (missing, new or changed).
+std::string changes(const std::map<std::string, std::string>& before,
+                    const std::map<std::string, std::string>& after) {
+  std::string out;
+  for (const auto& [path, bytes] : before) {
+    const auto a = after.find(path);
+    if (a == after.end())
+      out += " missing " + path;
+    else if (a->second != bytes)
+      out += " changed " + path;
+  }
+  for (const auto& [path, bytes] : after) {
+    if (before.count(path) == 0) out += " new " + path;
+  }
+  return out;
+}
+
+// Issue 21, defect 7c: recording an episode name again would overwrite its images and add its
+// lines to index.txt a second time (the index then disagrees with the files). The recorder
+// refuses, naming the episode and the folder, and changes nothing.
+TEST(DemonstrationRecorder, AnEpisodeNameAlreadyInTheFolderIsRefused) {
+  const std::string folder = ::testing::TempDir() + "walkgen_demo_recorder_again";
+  std::filesystem::remove_all(folder);
+  const cv::Mat disparity(24, 32, CV_32F, cv::Scalar(2.0f));
+  {
+    walkgen::DemonstrationRecorder first(folder, "scan_7");
+    for (int k = 0; k < 2; ++k) {
+      first.record(0.4 * k, gradient_image(32, 24, k), disparity, {0.01 * k, 0.0, 0.0});
+    }
+  }
+  const auto before = snapshot(folder);
+  ASSERT_EQ(before.size(), 5u);  // index.txt, 2 rgb, 2 disparity
+  walkgen_test::expect_invalid_argument(
+      [&] {
+        walkgen::DemonstrationRecorder again(folder, "scan_7");  // a second run, same name
+        again.record(0.0, gradient_image(32, 24, 5), disparity, {0.05, 0.0, 0.0});
+      },
+      {"'scan_7'", folder, "index.txt", "hint"});
+  EXPECT_EQ(changes(before, snapshot(folder)), "");
+  EXPECT_EQ(walkgen::read_demonstration_index(folder).size(), 2u);
+
+  // Images of the episode without index lines (a run stopped before its index was written, or
+  // an index restored from a backup) are refused too.
+  std::filesystem::remove(folder + "/index.txt");
+  const auto images_only = snapshot(folder);
+  walkgen_test::expect_invalid_argument(
+      [&] { walkgen::DemonstrationRecorder again(folder, "scan_7"); },
+      {"'scan_7'", folder, "rgb/scan_7_000000.png"});
+  EXPECT_EQ(changes(images_only, snapshot(folder)), "");
+
+  // Other names, also ones that start alike, are free.
+  walkgen::DemonstrationRecorder other(folder, "scan");
+  other.record(0.0, gradient_image(32, 24, 1), disparity, {0.0, 0.0, 0.0});
+  walkgen::DemonstrationRecorder longer(folder, "scan_70");
+  EXPECT_EQ(longer.samples(), 0);
 }
 
 }  // namespace

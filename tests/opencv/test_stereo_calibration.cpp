@@ -1,17 +1,27 @@
 // Calibration on OpenCV's 13 stereo chessboard pairs (thesis §3.2, §10.1; issue 6 acceptance):
 // left mono RMS <= 0.45 px with f_x within 1 % of OpenCV's shipped 535.9, stereo RMS <= 0.7 px,
-// mean epipolar error <= 0.5 px; YAML round trip; clear errors for bad input.
+// mean epipolar error <= 0.5 px; YAML round trip; clear errors for bad input. Issue 21: every
+// malformed or truncated file is refused with walkgen's own error naming the file and the key,
+// and a save that fails half-way leaves the previous file as it was.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 #include <walkgen/opencv/stereo_calibration.hpp>
 
 #include "opencv/data_dir.hpp"
 #include "support/expect_error.hpp"
+#include "support/files.hpp"
 
 namespace {
 
@@ -32,6 +42,42 @@ std::vector<cv::Mat> read_all(const std::vector<std::string>& files) {
 }
 
 using walkgen_test::expect_invalid_argument;
+
+namespace fs = std::filesystem;
+
+const fs::path kReliability = WALKGEN_SOURCE_DIR "/tests/data/reliability/stereo_calibration";
+
+using walkgen_test::fresh_folder;
+using walkgen_test::read_bytes;
+
+std::set<std::string> listing(const fs::path& folder) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(folder)) names.insert(e.path().filename().string());
+  return names;
+}
+
+/// Lowers the soft limit on the size of files this process writes (RLIMIT_FSIZE): a write past
+/// it fails as on a full disk (SIGXFSZ ignored meanwhile). Restores both on destruction.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    getrlimit(RLIMIT_FSIZE, &previous_);
+    rlimit lowered = previous_;
+    lowered.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lowered);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &previous_);
+    std::signal(SIGXFSZ, previous_handler_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  rlimit previous_{};
+  void (*previous_handler_)(int) = nullptr;
+};
 
 }  // namespace
 
@@ -177,4 +223,130 @@ TEST(StereoCalibration, BadInputGivesClearErrors) {
   skip.skip_views_without_board = true;
   const walkgen::StereoCalibration c = walkgen::calibrate_stereo(l, r, skip);
   EXPECT_EQ(c.views_used, (std::vector<int>{0, 1, 3}));
+}
+
+// Issue 21, defect 6: each reproducer let a cv::Exception escape, or loaded although malformed
+// (negative size, NaN translation, truncated). Each must give walkgen's own error naming the file
+// and the first key (in the order the file is read) that is wrong.
+TEST(StereoCalibration, MalformedFilesGiveWalkgenErrorsNamingFileAndKey) {
+  const std::map<std::string, std::string> first_bad_key = {
+      {"calib_cvexception_Failed_to_allocate_137438953408_bytes_in.yaml", "D2"},  // rows: garbage
+      {"calib_cvexception_Failed_to_allocate_51539607528_bytes_in_.yaml", "R"},   // rows: garbage
+      {"calib_cvexception_Invalid_data_type_specification_in_funct.yaml", "K2"},  // dt: atrix
+      {"calib_cvexception__data_node_empty___in_function__read_.yaml", "D1"},     // no data
+      {"calib_cvexception__dt_empty___in_function__read_.yaml", "Q"},             // no dt
+      {"calib_cvexception__sizes_node_empty___in_function__read_.yaml", "K1"},    // no rows
+      {"calib_cvexception_isMap___in_function__operator___.yaml", "D2"},          // a string
+      {"calib_cvexception_nelems____m_total___m_channels___in_func.yaml", "T"},   // 2x3
+      {"calib_cvexception_readRawData_can_only_be_used_to_read_pla.yaml", "E"},   // "?0."
+      {"calib_cvexception_s____0_in_function__setSize_.yaml", "F"},               // no cols
+      {"calib_nan_T.yaml", "T"},
+      {"calib_negative_size.yaml", "image_width"},
+      {"calib_prefix11.yaml", "image_width"},                          // no map at all
+      {"calib_prefix2082_loads_rms_0.yaml", "rms"},                    // cut before rms
+      {"calib_prefix2092_loads_rms_4.09.yaml", "mean_epipolar_error"}  // cut inside rms
+  };
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(kReliability)) {
+    const std::string name = entry.path().filename().string();
+    if (name == "calib_full.yaml") continue;
+    ++files;
+    try {
+      const walkgen::StereoCalibration c = walkgen::load_stereo_calibration(entry.path().string());
+      ADD_FAILURE() << name << " loaded (rms " << c.rms << ", image " << c.left.image_size << ")";
+    } catch (const walkgen::invalid_argument& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(name), std::string::npos) << "message '" << message << "'";
+      const auto key = first_bad_key.find(name);
+      const std::string expected =
+          key == first_bad_key.end() ? "key '" : "key '" + key->second + "'";
+      EXPECT_NE(message.find(expected), std::string::npos)
+          << name << ": message '" << message << "' lacks " << expected;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << name << ": a foreign exception escaped: " << e.what();
+    }
+  }
+  EXPECT_GE(files, first_bad_key.size());
+  // The complete file, in the format before the end marker (no walkgen_calibration_format key),
+  // still loads.
+  const walkgen::StereoCalibration full =
+      walkgen::load_stereo_calibration((kReliability / "calib_full.yaml").string());
+  EXPECT_EQ(full.left.image_size, cv::Size(640, 480));
+  EXPECT_DOUBLE_EQ(full.translation.at<double>(0), -3.33);
+  EXPECT_EQ(full.left.distortion.cols, 8);
+  EXPECT_DOUBLE_EQ(full.rms, 0.41);
+  EXPECT_DOUBLE_EQ(full.mean_epipolar_error, 0.35);
+  EXPECT_DOUBLE_EQ(full.left.rms, 0.29);
+  EXPECT_DOUBLE_EQ(full.right.rms, 0.31);
+}
+
+// Issue 21, defect 6: a file that save_stereo_calibration wrote and that was cut anywhere (a
+// crash, a full disk, a copy that stopped) must not load: not with rms 0, not with a cut number.
+// Only a prefix that still holds the whole end marker may load, and then with every value.
+TEST(StereoCalibration, EveryTruncatedCopyOfASavedFileIsRefused) {
+  const walkgen::StereoCalibration c =
+      walkgen::load_stereo_calibration((kReliability / "calib_full.yaml").string());
+  const fs::path folder = fresh_folder("walkgen_calibration_prefixes");
+  const fs::path saved = folder / "saved.yml";
+  walkgen::save_stereo_calibration(c, saved.string());
+  const std::string text = read_bytes(saved);
+  const std::string marker = "\ncomplete: 1";
+  const std::size_t at = text.find(marker);
+  const std::size_t complete = at == std::string::npos ? text.size() : at + marker.size();
+  std::vector<std::string> loaded;
+  for (std::size_t n = 0; n < text.size(); ++n) {
+    const fs::path cut = folder / "cut.yml";
+    std::ofstream(cut, std::ios::binary | std::ios::trunc) << text.substr(0, n);
+    try {
+      const walkgen::StereoCalibration l = walkgen::load_stereo_calibration(cut.string());
+      if (n < complete) {
+        loaded.push_back(std::to_string(n) + " bytes (rms " + std::to_string(l.rms) + ")");
+      } else {
+        EXPECT_DOUBLE_EQ(l.right.rms, c.right.rms);
+      }
+    } catch (const walkgen::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("cut.yml"), std::string::npos) << e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << n << " bytes: a foreign exception escaped: " << e.what();
+    }
+  }
+  EXPECT_TRUE(loaded.empty()) << loaded.size() << " of " << complete
+                              << " truncated copies loaded, e.g. "
+                              << (loaded.empty() ? "" : loaded.front() + ", " + loaded.back());
+}
+
+// Issue 21, defect 7a: a save that fails half-way (here: a full disk, or a calibration that
+// would not read back) leaves the previous file complete and loadable, and no temporary file.
+TEST(StereoCalibration, AFailedSaveLeavesThePreviousFile) {
+  const walkgen::StereoCalibration good =
+      walkgen::load_stereo_calibration((kReliability / "calib_full.yaml").string());
+  const fs::path folder = fresh_folder("walkgen_calibration_interrupted");
+  const std::string path = (folder / "stereo.yml").string();
+  walkgen::save_stereo_calibration(good, path);
+  const std::string before = read_bytes(path);
+  ASSERT_GT(before.size(), 1000u);
+
+  walkgen::StereoCalibration other = good;
+  other.rms = 0.5;
+  other.translation = good.translation.clone();
+  other.translation.at<double>(0) = -3.4;
+  {
+    const FileSizeLimit full_disk(1000);  // the write stops after 1000 bytes
+    expect_invalid_argument([&] { walkgen::save_stereo_calibration(other, path); }, {path});
+  }
+  EXPECT_EQ(read_bytes(path), before);
+  EXPECT_EQ(listing(folder), (std::set<std::string>{"stereo.yml"}));
+
+  other.translation.at<double>(1) = std::nan("");  // load would refuse it: so does save
+  expect_invalid_argument([&] { walkgen::save_stereo_calibration(other, path); }, {path, "'T'"});
+  EXPECT_EQ(read_bytes(path), before);
+  EXPECT_EQ(listing(folder), (std::set<std::string>{"stereo.yml"}));
+  const walkgen::StereoCalibration loaded = walkgen::load_stereo_calibration(path);
+  EXPECT_DOUBLE_EQ(loaded.translation.at<double>(0), -3.33);
+  EXPECT_DOUBLE_EQ(loaded.rms, 0.41);
+
+  // A folder that does not exist.
+  expect_invalid_argument(
+      [&] { walkgen::save_stereo_calibration(good, (folder / "nowhere" / "s.yml").string()); },
+      {"nowhere", "missing"});
 }

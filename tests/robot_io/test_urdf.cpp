@@ -113,7 +113,8 @@ TEST(Urdf, MalformedDocumentsThrowNamingLineAndElement) {
       {robot_with(R"(<mass value="2"/>)", ""), {"<link name='base'> <inertial>", "<mass> element"}},
       {robot_with(R"(<mass value="2"/>)", R"(<mass value="two"/>)"),
        {"robot.urdf:7: <link name='base'> <mass> value", "a finite number, got 'two'"}},
-      {robot_with(R"(<mass value="2"/>)", R"(<mass value="-2"/>)"), {"mass >= 0 kg, got -2"}},
+      {robot_with(R"(<mass value="2"/>)", R"(<mass value="-2"/>)"),
+       {"<link name='base'> <mass> value", "a mass of 0 kg or in [1e-9, 1e6] kg, got -2"}},
       {robot_with(R"(<mass value="2"/>)", R"(<mass value="2kg"/>)"), {"got '2kg'"}},
       {robot_with(R"( izz="3")", ""), {"<link name='base'> <inertia> izz", "none"}},
       {robot_with(R"(<origin xyz="0 0 0.5")", R"(<origin xyz="0 0")"),
@@ -150,7 +151,46 @@ TEST(Urdf, MalformedDocumentsThrowNamingLineAndElement) {
                   R"(<parent link="base"/><child link="base"/>)"),
        {"below the root 'wheel'", "cycle through 'base', 'arm', 'tool'"}},
       {robot_with(R"(<link name="wheel"/>)", R"(<link name="arm"/>)"),
-       {"link 'arm'", "unique name"}},
+       {"robot.urdf:13: <link name='arm'> name", "a unique link name",
+        "got link 'arm' again after line 12"}},
+      {robot_with(R"(<joint name="lift")", R"(<joint name="spin")"),
+       {"robot.urdf:19: <joint name='spin'> name", "a unique joint name",
+        "got joint 'spin' again after line 16"}},
+      {robot_with(R"(<link name="wheel"/>)", R"(<link name=""/>)"),
+       {"robot.urdf:12: <link name=''> name", "a non-empty name, got ''"}},
+      {robot_with(R"(<joint name="lift")", R"(<joint name="")"), {"<joint name=''> name"}},
+      {robot_with(R"(<child link="arm"/>)", R"(<child link=""/>)"),
+       {"<joint name='lift'> <child> link", "a non-empty name"}},
+      // Bounds (walkgen::UrdfBounds): every number finite and physically plausible.
+      {robot_with(R"(<mass value="2"/>)", R"(<mass value="2e6"/>)"),
+       {"<link name='base'> <mass> value", "[1e-9, 1e6] kg, got 2e+06"}},
+      {robot_with(R"(<mass value="2"/>)", R"(<mass value="1e-12"/>)"), {"got 1e-12"}},
+      {robot_with(R"(<mass value="2"/>)", R"(<mass value="1e999"/>)"),
+       {"<mass> value", "a finite number, got '1e999'"}},
+      {robot_with(R"(iyy="2")", R"(iyy="1e13")"),
+       {"<link name='base'> <inertia> iyy", "an inertia entry in [-1e12, 1e12] kg m^2",
+        "got '1e13'"}},
+      {robot_with(R"(ixx="1" ixy="0")", R"(ixx="1" ixy="5")"),
+       {"<link name='base'> <inertia>", "a positive semidefinite inertia", "principal moments"}},
+      {robot_with(R"(ixx="1")", R"(ixx="-1")"), {"a positive semidefinite inertia"}},
+      {robot_with(R"(<origin xyz="0 0 0.5")", R"(<origin xyz="0 0 1e4")"),
+       {"<joint name='lift'> <origin> xyz", "3 coordinates in [-1000, 1000] m, got '0 0 1e4'"}},
+      {robot_with(R"(<origin xyz="0.1 0 0")", R"(<origin xyz="0.1 -2e3 0")"),
+       {"<link name='base'> <origin> xyz", "got '0.1 -2e3 0'"}},
+      {robot_with(R"(rpy="0.1 0.2 0.3")", R"(rpy="0.1 0.2 1e300")"),
+       {"<joint name='lift'> <origin> rpy", "3 angles in [-1000, 1000] rad"}},
+      {robot_with(R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 1e-7"/>)"),
+       {"<joint name='spin'> <axis> xyz", "length in [1e-6, 1e6]", "got '0 0 1e-7'"}},
+      {robot_with(R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="1e-200 1e-200 0"/>)"),
+       {"length in [1e-6, 1e6]"}},
+      {robot_with(R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 inf"/>)"),
+       {"<axis> xyz", "3 finite numbers"}},
+      {robot_with(lift_limit, R"(<limit lower="-1e9" upper="1"/>)"),
+       {"<joint name='lift'> <limit> lower", "a limit in [-1000, 1000] rad, got '-1e9'"}},
+      // Tree shape, found when the description is read (not only when a tree is built).
+      {robot_with(R"(<parent link="base"/><child link="arm"/>)",
+                  R"(<parent link="arm"/><child link="arm"/>)"),
+       {"robot.urdf: KinematicTree", "cycle through 'arm', 'tool'"}},
   };
   for (const auto& c : cases) {
     const std::string message = load_error(c.urdf);
@@ -159,6 +199,70 @@ TEST(Urdf, MalformedDocumentsThrowNamingLineAndElement) {
           << "'" << part << "' not in: " << message << "\nfor:\n"
           << c.urdf;
     }
+  }
+}
+
+// Issue 21 reproducers (tests/data/reliability/urdf): each used to abort a Debug build or to load
+// silently wrong values; each must now throw walkgen::invalid_argument naming the link or joint.
+const std::string kReliability = std::string(WALKGEN_SOURCE_DIR) + "/tests/data/reliability/urdf/";
+
+// The message of the walkgen::invalid_argument that loading `file` throws, or a description of
+// what happened instead.
+std::string file_error(const std::string& file) {
+  try {
+    const auto tree = walkgen::kinematic_tree_from_urdf_file(kReliability + file);
+    return "expected a throw, but it loaded (total mass " + std::to_string(tree.mass()) + " kg)";
+  } catch (const walkgen::invalid_argument& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("wrong exception type: ") + e.what();
+  }
+}
+
+void expect_file_error(const std::string& file, const std::vector<std::string>& parts) {
+  const std::string message = file_error(file);
+  for (const auto& part : parts) {
+    EXPECT_NE(message.find(part), std::string::npos)
+        << "'" << part << "' not in: " << message << "\nfor " << file;
+  }
+}
+
+TEST(UrdfReliability, MalformedInertiaThrowsInsteadOfAbortingADebugBuild) {
+  expect_file_error("urdf_bad_iyy_aborts_debug.urdf",
+                    {"urdf_bad_iyy_aborts_debug.urdf:1: <link name='a'> <inertia> iyy",
+                     "a finite number, got 'oops'"});
+}
+
+TEST(UrdfReliability, FuzzedHumanoidThrowsInsteadOfAbortingADebugBuild) {
+  // A fuzzed copy of models/walkgen_humanoid.urdf: l_hip_1's iyy attribute is garbled.
+  expect_file_error("urdf_fuzz_crash_commainit.urdf",
+                    {"<link name='l_hip_1'> <inertia> iyy", "the attribute, got none"});
+}
+
+TEST(UrdfReliability, HugeAxisIsRejected) {
+  expect_file_error("urdf_huge_axis.urdf",
+                    {"urdf_huge_axis.urdf:3: <joint name='j'> <axis> xyz",
+                     "a non-zero axis of length in [1e-6, 1e6], got '1e200 0 0'"});
+}
+
+TEST(UrdfReliability, MassOverflowIsRejected) {
+  expect_file_error("urdf_mass_overflow.urdf",
+                    {"urdf_mass_overflow.urdf:1: <link name='a'> <mass> value",
+                     "a mass of 0 kg or in [1e-9, 1e6] kg, got 1e+308"});
+}
+
+TEST(Urdf, DescriptionIsCheckedAsATree) {
+  // kinematic_description_from_urdf() checks the tree's shape too, naming the joint.
+  try {
+    (void)walkgen::kinematic_description_from_urdf(
+        robot_with(R"(<parent link="base"/><child link="arm"/>)",
+                   R"(<parent link="nowhere"/><child link="arm"/>)"),
+        "robot.urdf");
+    FAIL() << "a joint with an unknown parent loaded";
+  } catch (const walkgen::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("robot.urdf: KinematicTree: joint 'lift'"),
+              std::string::npos)
+        << e.what();
   }
 }
 

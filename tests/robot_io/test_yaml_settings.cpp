@@ -60,6 +60,9 @@ void expect_same_settings(const Settings& a, const Settings& b) {
       {"max_relative_yaw_rate", &Settings::max_relative_yaw_rate},
       {"footstep_regularization", &Settings::footstep_regularization},
       {"sqp_tolerance", &Settings::sqp_tolerance},
+      {"max_state_distance", &Settings::max_state_distance},
+      {"max_com_speed", &Settings::max_com_speed},
+      {"max_com_acceleration", &Settings::max_com_acceleration},
       {"step_velocity_weight", &Settings::step_velocity_weight}};
   for (const auto& f : numbers) EXPECT_DOUBLE_EQ(a.*f.member, b.*f.member) << f.name;
   const Field<Settings, int> integers[] = {{"n_still", &Settings::n_still},
@@ -148,12 +151,16 @@ TEST(YamlSettings, MissingKeysKeepTheDefaults) {
   expected.footstep_regularization = 1e-8;
   expected.sqp_corrections = 0;
   expected.sqp_tolerance = 2e-3;
+  expected.max_state_distance = 1.5;
+  expected.max_com_speed = 3;
+  expected.max_com_acceleration = 40;
   expected.step_velocity_weight = 5;
   expect_same_settings(walkgen::walking_settings_from_yaml(
                            "step_height: 0.07\nsupport_foot: right\nmax_relative_yaw: 0.2\n"
                            "max_relative_yaw_rate: 1.5\nsqp_iterations: 3\n"
                            "max_command: [0.3, 0.1, 0.2]\nfootstep_regularization: 1e-8\n"
-                           "sqp_corrections: 0\nsqp_tolerance: 2e-3\nstep_velocity_weight: 5\n"),
+                           "sqp_corrections: 0\nsqp_tolerance: 2e-3\nstep_velocity_weight: 5\n"
+                           "max_state_distance: 1.5\nmax_com_speed: 3\nmax_com_acceleration: 40\n"),
                        expected);
 }
 
@@ -395,6 +402,83 @@ TEST(YamlSettings, MalformedYamlAndMissingFilesNameThePath) {
   what = error_of([&] { return walkgen::load_walking_settings(missing); });
   EXPECT_NE(what.find(missing + ": expected a readable YAML file"), std::string::npos) << what;
   EXPECT_NE(what.find("bad file"), std::string::npos) << what;
+}
+
+// Issue 21: whatever the text, only walkgen::invalid_argument escapes, naming the key; integer
+// keys are decimal counts that fit an int; numbers are finite.
+TEST(YamlSettings, IntegersAreDecimalCountsThatFitAnInt) {
+  const char* keys[] = {"n", "n_still", "nwsr", "sqp_iterations", "sqp_corrections"};
+  for (const char* key : keys) {
+    for (const char* value : {"-1", "2147483648", "99999999999999999999999", "0x10", "1e3", "''"}) {
+      const std::string text = std::string("optimization:\n  ") + key + ": " + value + "\n";
+      const std::string what = error_of_text(text);
+      EXPECT_NE(what.find(std::string("YAML text:2: key 'optimization.") + key +
+                          "': expected an integer in [0, 2147483647], got "),
+                std::string::npos)
+          << text << what;
+    }
+  }
+  auto s = walkgen::walking_settings_from_yaml("n: 010\nnwsr: +20\n");
+  EXPECT_EQ(s.n, 10);  // decimal, not yaml-cpp's octal
+  EXPECT_EQ(s.nwsr, 20);
+  s = walkgen::walking_settings_from_yaml("nwsr: 1000000\n");
+  EXPECT_EQ(s.nwsr, 1000000);
+  // In range for an int, out of range for the settings: validate() says so, naming the setting.
+  EXPECT_NE(error_of_text("sqp_iterations: 2147483647\n").find("YAML text: WalkingSettings."),
+            std::string::npos);
+  EXPECT_NE(error_of_text("n: 0\n").find("YAML text: WalkingSettings.n"), std::string::npos);
+}
+
+TEST(YamlSettings, NumbersAreFinite) {
+  const std::vector<BadCase> cases = {
+      {"t_step: .inf\n", {"YAML text:1: key 't_step'", "a finite number", "'.inf'"}},
+      {"gamma: .nan\n", {"key 'gamma'", "a finite number", "'.nan'"}},
+      {"cpu_time: -.inf\n", {"key 'cpu_time'", "a finite number"}},
+      {"com_x: [0, .nan, 0]\n", {"key 'com_x[1]'", "a finite number"}},
+      {"t: 1e999\n", {"key 't'", "a number", "'1e999'"}},
+      {"obstacles: [{x: .inf, y: 1, radius: 0.5}]\n", {"key 'obstacles[0].x'", "a finite number"}},
+      {"obstacle: true\nx_pos: .nan\ny_pos: 0\nradius: 1\n", {"key 'x_pos'", "a finite number"}},
+  };
+  for (const auto& c : cases) {
+    const std::string what = error_of_text(c.text);
+    for (const auto& fragment : c.in_message) {
+      EXPECT_NE(what.find(fragment), std::string::npos) << c.text << "message: " << what;
+    }
+  }
+}
+
+TEST(YamlSettings, OnlyWalkgenErrorsEscape) {
+  // Each once let a yaml-cpp exception through or is a yaml-cpp corner: aliases, tags, deep
+  // nesting, non-scalar keys, several documents, binary.
+  const std::vector<std::string> texts = {
+      "n: &a 16\nnwsr: *a\nt: *a\n",
+      "n: !!str 16\n",
+      "t_step: !!binary AAAA\n",
+      "? [a, b]\n: 1\n",
+      "{[1]: 2}\n",
+      "optimization:\n  ? {a: 1}\n  : 2\n",
+      "obstacles: [{[x]: 1, y: 1, radius: 1}]\n",
+      "obstacles: [[1, 2]]\n",
+      "n: 16\n---\nn: 17\n",
+      "*undefined\n",
+      "n: *undefined\n",
+      std::string(5000, '[') + std::string(5000, ']'),
+      std::string(5000, '{') + std::string(5000, '}'),
+      std::string("n: \0\x01\xff", 7),
+      "\xef\xbb\xbf\xff\xfe",
+      "!<tag:yaml.org,2002:map> {n: 16}\n",
+      "com_x: [&x 1, *x, *x]\n",
+      "security_margin: !!seq [0.01, 0.01]\n",
+  };
+  for (const auto& text : texts) {
+    try {
+      (void)walkgen::walking_settings_from_yaml(text);
+    } catch (const walkgen::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("YAML text"), std::string::npos) << e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "foreign exception " << e.what() << " for:\n" << text.substr(0, 80);
+    }
+  }
 }
 
 TEST(YamlSettings, FloatSettings) {

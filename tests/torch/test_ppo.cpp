@@ -3,13 +3,18 @@
 // Python where /usr/bin/python3 has torch), the environments, and a short seeded PPO run on the
 // benchmarking environment of §11.2.1 that must learn.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <torch/torch.h>
 
 #include <array>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -150,6 +155,69 @@ TEST(TorchPpo, SaveLoadTorchScriptRoundTrip) {
   EXPECT_THROW((void)walkgen::TorchPpo::load(temp_path("no_such_policy.pt")),
                walkgen::invalid_argument);
   EXPECT_THROW(ppo.save("/no/such/folder/p.pt"), walkgen::invalid_argument);
+}
+
+// Issue 21, defect 7b: ppo_train saves the best policy over the previous one; a save that stops
+// half-way (a crash, a full disk) must leave the previous policy loadable. save() writes a
+// temporary file in the same folder and renames it over the target.
+TEST(TorchPpo, SaveIsAtomic) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(temp_path("ppo_atomic"));
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::string path = (folder / "policy.pt").string();
+  const auto listing = [&] {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(folder)) names.insert(e.path().filename().string());
+    return names;
+  };
+  const auto bytes = [&] {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  walkgen::PpoSettings s;
+  s.seed = 5;
+  walkgen::TorchPpo first(4, 2, s);
+  first.save(path);
+  EXPECT_EQ(listing(), (std::set<std::string>{"policy.pt"}));  // no temporary file left
+  const std::string saved = bytes();
+  ASSERT_GT(saved.size(), 2000u);
+
+  s.seed = 6;
+  walkgen::TorchPpo second(4, 2, s);
+  {  // A full disk: writes past 1000 bytes fail (RLIMIT_FSIZE; SIGXFSZ ignored meanwhile).
+    void (*handler)(int) = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit previous{};
+    getrlimit(RLIMIT_FSIZE, &previous);
+    rlimit lowered = previous;
+    lowered.rlim_cur = 1000;
+    setrlimit(RLIMIT_FSIZE, &lowered);
+    bool threw = false;
+    try {
+      second.save(path);
+    } catch (const walkgen::invalid_argument& e) {
+      threw = std::string(e.what()).find(path) != std::string::npos;
+    } catch (...) {
+    }
+    setrlimit(RLIMIT_FSIZE, &previous);
+    std::signal(SIGXFSZ, handler);
+    EXPECT_TRUE(threw) << "a save that could not write the file did not say so";
+  }
+  EXPECT_EQ(bytes(), saved) << "the previous policy was overwritten";
+  EXPECT_EQ(listing(), (std::set<std::string>{"policy.pt"}));
+  walkgen::TorchPpo loaded = walkgen::TorchPpo::load(path);
+  const float obs[4] = {1.0f, -2.0f, 3.0f, 0.5f};
+  float a[2], b[2];
+  first.act(obs, 1, true, a, nullptr, nullptr);
+  loaded.act(obs, 1, true, b, nullptr, nullptr);
+  for (int i = 0; i < 2; ++i) EXPECT_FLOAT_EQ(a[i], b[i]);
+
+  second.save(path);  // with room on the disk the new policy replaces the old one
+  EXPECT_EQ(listing(), (std::set<std::string>{"policy.pt"}));
+  walkgen::TorchPpo replaced = walkgen::TorchPpo::load(path);
+  second.act(obs, 1, true, a, nullptr, nullptr);
+  replaced.act(obs, 1, true, b, nullptr, nullptr);
+  for (int i = 0; i < 2; ++i) EXPECT_FLOAT_EQ(a[i], b[i]);
 }
 
 TEST(TorchPpo, RejectsBadSettings) {

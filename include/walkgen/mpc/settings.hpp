@@ -154,7 +154,7 @@ struct WalkingSettings {
   Scalar max_com_speed = Scalar(5), max_com_acceleration = Scalar(50);
 
   /// Samples of the preview horizon per step, t_step / t (an integer after validate(), which
-  /// also bounds it by settings_limits::max_samples_per_step).
+  /// also bounds it by settings_limits::kMaxSamplesPerStep).
   int samples_per_step() const {
     const Scalar ratio = t_step / t;
     return ratio >= Scalar(0) && ratio <= Scalar(1 << 30) ? static_cast<int>(std::lround(ratio))
@@ -216,15 +216,16 @@ WalkingSettings<Scalar> heicub_settings() {
 /// Ranges that validate() enforces on the integer settings and on the magnitudes that the QP
 /// squares or sums (beyond them int arithmetic would overflow or the QP lose every digit).
 namespace settings_limits {
-constexpr int max_horizon = 1000;                ///< n: preview samples (the QP has ~2n variables)
-constexpr int max_samples_per_step = 1000;       ///< t_step / t
-constexpr int max_sqp_iterations = 100;          ///< sqp_iterations, and sqp_corrections alike
-constexpr int max_active_set_changes = 1000000;  ///< nwsr
-constexpr int max_still_horizons = 1000000;      ///< n_still
-constexpr double max_position = 1e6;  ///< [m] |com|, |foot|, obstacle centres, radii, sizes
-constexpr double max_period = 1e3;    ///< [s] t, t_step, t_ds, t_feedback, command_period
-constexpr double max_weight = 1e12;   ///< alpha, beta, gamma, step_velocity_weight, ...
-constexpr double min_gamma = 1e-12;   ///< gamma keeps H definite; smaller leaves it singular
+constexpr int kMaxHorizon = 1000;              ///< n: preview samples (the QP has ~2n variables)
+constexpr int kMaxSamplesPerStep = 1000;       ///< t_step / t
+constexpr int kMaxSqpIterations = 100;         ///< sqp_iterations, and sqp_corrections alike
+constexpr int kMaxActiveSetChanges = 1000000;  ///< nwsr
+constexpr int kMaxStillHorizons = 1000000;     ///< n_still
+constexpr double kMaxPosition = 1e6;  ///< [m] |com|, |foot|, obstacle centres, radii, sizes
+constexpr double kMinPeriod = 1e-4;   ///< [s] t, t_step, t_ds, t_feedback, command_period
+constexpr double kMaxPeriod = 1e3;    ///< [s] the same
+constexpr double kMaxWeight = 1e12;   ///< alpha, beta, gamma, step_velocity_weight, ...
+constexpr double kMinGamma = 1e-12;   ///< gamma keeps H definite; smaller leaves it singular
 }  // namespace settings_limits
 
 namespace detail {
@@ -253,14 +254,21 @@ void validate(const WalkingSettings<Scalar>& s) {
       check_argument(false, where, range.str(), value);
     }
   };
+  auto check_between = [](const char* where, Scalar value, double lo, double hi) {
+    if (!(std::isfinite(value) && value >= Scalar(lo) && value <= Scalar(hi))) {
+      std::ostringstream range;
+      range << "a value in [" << lo << ", " << hi << "]";
+      check_argument(false, where, range.str(), value);
+    }
+  };
   auto check_position = [](const char* where, Scalar value) {
-    check_argument(std::isfinite(value) && std::abs(value) <= Scalar(lim::max_position), where,
+    check_argument(std::isfinite(value) && std::abs(value) <= Scalar(lim::kMaxPosition), where,
                    "a finite value with |value| <= 1e6", value);
   };
-  check_count("WalkingSettings.n", s.n, 1, lim::max_horizon);
-  check_up_to("WalkingSettings.t", s.t, lim::max_period, false);
-  check_up_to("WalkingSettings.t_step", s.t_step, lim::max_period, false);
-  check_argument(s.t_step / s.t <= Scalar(lim::max_samples_per_step), "WalkingSettings.t_step",
+  check_count("WalkingSettings.n", s.n, 1, lim::kMaxHorizon);
+  check_between("WalkingSettings.t", s.t, lim::kMinPeriod, lim::kMaxPeriod);
+  check_between("WalkingSettings.t_step", s.t_step, lim::kMinPeriod, lim::kMaxPeriod);
+  check_argument(s.t_step / s.t <= Scalar(lim::kMaxSamplesPerStep), "WalkingSettings.t_step",
                  "at most 1000 samples of t = " + std::to_string(s.t) + " s per step", s.t_step);
   check_argument(s.t_step >= s.t && detail::is_multiple(s.t_step, s.t), "WalkingSettings.t_step",
                  "a whole multiple of t = " + std::to_string(s.t) + " s", s.t_step);
@@ -274,19 +282,20 @@ void validate(const WalkingSettings<Scalar>& s) {
                  "the ZMP moves to the new foot during the first interval of every step");
   check_argument(s.t_ds < s.t_step, "WalkingSettings.t_ds", "a double support shorter than t_step",
                  s.t_ds);
-  check_up_to("WalkingSettings.t_ds", s.t_ds, lim::max_period, false);
-  check_positive("WalkingSettings.command_period", s.command_period);
+  check_between("WalkingSettings.t_ds", s.t_ds, lim::kMinPeriod, lim::kMaxPeriod);
+  check_between("WalkingSettings.command_period", s.command_period, lim::kMinPeriod,
+                lim::kMaxPeriod);
   check_argument(s.command_period <= s.t && detail::is_multiple(s.t, s.command_period),
                  "WalkingSettings.command_period", "a period that divides t evenly",
                  s.command_period);
-  check_up_to("WalkingSettings.t_feedback", s.t_feedback, lim::max_period, false);
-  check_count("WalkingSettings.n_still", s.n_still, 0, lim::max_still_horizons);
-  check_up_to("WalkingSettings.step_height", s.step_height, lim::max_position, true);
-  check_up_to("WalkingSettings.foot_width", s.foot_width, lim::max_position, false);
-  check_up_to("WalkingSettings.foot_length", s.foot_length, lim::max_position, false);
-  check_up_to("WalkingSettings.foot_distance", s.foot_distance, lim::max_position, false);
-  check_up_to("WalkingSettings.security_margin[0]", s.security_margin[0], lim::max_position, true);
-  check_up_to("WalkingSettings.security_margin[1]", s.security_margin[1], lim::max_position, true);
+  check_between("WalkingSettings.t_feedback", s.t_feedback, lim::kMinPeriod, lim::kMaxPeriod);
+  check_count("WalkingSettings.n_still", s.n_still, 0, lim::kMaxStillHorizons);
+  check_up_to("WalkingSettings.step_height", s.step_height, lim::kMaxPosition, true);
+  check_up_to("WalkingSettings.foot_width", s.foot_width, lim::kMaxPosition, false);
+  check_up_to("WalkingSettings.foot_length", s.foot_length, lim::kMaxPosition, false);
+  check_up_to("WalkingSettings.foot_distance", s.foot_distance, lim::kMaxPosition, false);
+  check_up_to("WalkingSettings.security_margin[0]", s.security_margin[0], lim::kMaxPosition, true);
+  check_up_to("WalkingSettings.security_margin[1]", s.security_margin[1], lim::kMaxPosition, true);
   check_argument(Scalar(2) * s.security_margin[0] < s.foot_length,
                  "WalkingSettings.security_margin[0]", "less than half the foot length",
                  s.security_margin[0], "the shrunk support polygon would be empty");
@@ -295,7 +304,7 @@ void validate(const WalkingSettings<Scalar>& s) {
                  s.security_margin[1], "the shrunk support polygon would be empty");
   auto check_polygon = [](const char* where, const auto& vertices) {
     check_argument(
-        vertices.allFinite() && (vertices.array().abs() <= Scalar(lim::max_position)).all(), where,
+        vertices.allFinite() && (vertices.array().abs() <= Scalar(lim::kMaxPosition)).all(), where,
         "vertices with |coordinate| <= 1e6 m", "NaN, inf or larger");
     check_convex_polygon(where, vertices);
   };
@@ -305,31 +314,32 @@ void validate(const WalkingSettings<Scalar>& s) {
                  "WalkingSettings.com_x/com_y/com_q", "finite values", "NaN or inf");
   check_position("WalkingSettings.com_x[0]", s.com_x[0]);
   check_position("WalkingSettings.com_y[0]", s.com_y[0]);
-  check_up_to("WalkingSettings.com_z", s.com_z, lim::max_position, false);
+  check_between("WalkingSettings.com_z", s.com_z, 1e-3, lim::kMaxPosition);
   check_position("WalkingSettings.foot_x", s.foot_x);
   check_position("WalkingSettings.foot_y", s.foot_y);
   check_argument(std::isfinite(s.foot_q), "WalkingSettings.foot_q", "a finite yaw", s.foot_q);
-  check_up_to("WalkingSettings.gravity", s.gravity, 1e3, false);
-  check_up_to("WalkingSettings.alpha", s.alpha, lim::max_weight, true);
-  check_up_to("WalkingSettings.beta", s.beta, lim::max_weight, true);
-  check_up_to("WalkingSettings.step_velocity_weight", s.step_velocity_weight, lim::max_weight,
+  check_between("WalkingSettings.gravity", s.gravity, 1e-2, 1e3);
+  check_up_to("WalkingSettings.cpu_time", s.cpu_time, lim::kMaxPeriod, true);
+  check_up_to("WalkingSettings.alpha", s.alpha, lim::kMaxWeight, true);
+  check_up_to("WalkingSettings.beta", s.beta, lim::kMaxWeight, true);
+  check_up_to("WalkingSettings.step_velocity_weight", s.step_velocity_weight, lim::kMaxWeight,
               true);
-  check_up_to("WalkingSettings.gamma", s.gamma, lim::max_weight, false);
-  check_argument(s.gamma >= Scalar(lim::min_gamma), "WalkingSettings.gamma",
+  check_up_to("WalkingSettings.gamma", s.gamma, lim::kMaxWeight, false);
+  check_argument(s.gamma >= Scalar(lim::kMinGamma), "WalkingSettings.gamma",
                  "a jerk weight >= 1e-12 (it keeps the QP strictly convex)", s.gamma);
-  check_count("WalkingSettings.nwsr", s.nwsr, 1, lim::max_active_set_changes);
+  check_count("WalkingSettings.nwsr", s.nwsr, 1, lim::kMaxActiveSetChanges);
   check_up_to("WalkingSettings.max_relative_yaw", s.max_relative_yaw, 1e3, false);
   check_up_to("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate, 1e3, false);
-  check_count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::max_sqp_iterations);
-  check_count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::max_sqp_iterations);
-  check_up_to("WalkingSettings.sqp_tolerance", s.sqp_tolerance, lim::max_position, false);
+  check_count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::kMaxSqpIterations);
+  check_count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::kMaxSqpIterations);
+  check_between("WalkingSettings.sqp_tolerance", s.sqp_tolerance, 1e-9, lim::kMaxPosition);
   check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all() &&
                      (s.max_command.array() <= Scalar(1e3)).all(),
                  "WalkingSettings.max_command", "finite limits in [0, 1e3]",
                  "NaN, inf, negative or larger");
-  check_up_to("WalkingSettings.footstep_regularization", s.footstep_regularization, lim::max_weight,
+  check_up_to("WalkingSettings.footstep_regularization", s.footstep_regularization, lim::kMaxWeight,
               true);
-  check_up_to("WalkingSettings.max_state_distance", s.max_state_distance, lim::max_position, false);
+  check_up_to("WalkingSettings.max_state_distance", s.max_state_distance, lim::kMaxPosition, false);
   check_up_to("WalkingSettings.max_com_speed", s.max_com_speed, 1e3, false);
   check_up_to("WalkingSettings.max_com_acceleration", s.max_com_acceleration, 1e4, false);
   check_argument(std::hypot(s.com_x[0] - s.foot_x, s.com_y[0] - s.foot_y) <= s.max_state_distance &&
@@ -345,8 +355,8 @@ void validate(const WalkingSettings<Scalar>& s) {
   for (const auto& o : s.obstacles) {
     check_position("WalkingSettings.obstacles[].x", o.x);
     check_position("WalkingSettings.obstacles[].y", o.y);
-    check_up_to("WalkingSettings.obstacles[].radius", o.radius, lim::max_position, false);
-    check_up_to("WalkingSettings.obstacles[].margin", o.margin, lim::max_position, true);
+    check_up_to("WalkingSettings.obstacles[].radius", o.radius, lim::kMaxPosition, false);
+    check_up_to("WalkingSettings.obstacles[].margin", o.margin, lim::kMaxPosition, true);
   }
 }
 

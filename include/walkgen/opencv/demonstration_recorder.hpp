@@ -13,7 +13,9 @@
 ///
 /// index.txt starts with a comment line (#) naming the columns, then per sample, separated by
 /// single spaces: rgb path, disparity path (both relative to the folder), episode name, time [s],
-/// v_x [m/s], v_y [m/s], ω_z [rad/s]. Several recorders (episodes) may append to one folder.
+/// v_x [m/s], v_y [m/s], ω_z [rad/s]. Several recorders (episodes) may append to one folder, each
+/// under its own episode name: a name that the folder already holds (in index.txt or as image
+/// files) is refused, since recording it again would overwrite its images and list them twice.
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -49,7 +51,9 @@ class DemonstrationRecorder {
   /// Creates <folder>, its rgb/ and disparity/ subfolders and index.txt when missing, and
   /// appends to index.txt.
   /// @throws walkgen::invalid_argument when the episode name is empty or has characters other
-  ///   than letters, digits, '_' and '-', or the folder cannot be written.
+  ///   than letters, digits, '_' and '-', when the folder already holds the episode (index.txt
+  ///   lists it, or rgb/ or disparity/ holds an image <episode>_<digits>.png; nothing is then
+  ///   changed), or when the folder cannot be written.
   DemonstrationRecorder(const std::string& folder, const std::string& episode)
       : folder_(folder), episode_(episode) {
     bool ok = !episode.empty();
@@ -58,6 +62,7 @@ class DemonstrationRecorder {
     }
     check_argument(ok, "DemonstrationRecorder: episode", "letters, digits, '_' or '-'",
                    "'" + episode + "'");
+    check_episode_is_new();
     std::error_code ec;
     std::filesystem::create_directories(folder_ + "/rgb", ec);
     std::filesystem::create_directories(folder_ + "/disparity", ec);
@@ -109,6 +114,50 @@ class DemonstrationRecorder {
   const std::string& folder() const { return folder_; }
 
  private:
+  /// Throws when index.txt lists the episode or an image of it exists (before anything is
+  /// created or opened, so that a refused recorder changes nothing).
+  void check_episode_is_new() const {
+    const std::string where = "DemonstrationRecorder: episode '" + episode_ + "'";
+    const std::string expected = "an episode name not yet in '" + folder_ + "'";
+    const char* hint =
+        "choose another episode name (e.g. another seed) or folder; to record the episode "
+        "again, first delete its lines from index.txt and its images";
+    std::ifstream index(folder_ + "/index.txt");
+    std::string line;
+    for (int number = 1; std::getline(index, line); ++number) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream fields(line);
+      std::string rgb, disparity, episode;
+      fields >> rgb >> disparity >> episode;
+      check_argument(episode != episode_, where.c_str(), expected,
+                     "index.txt line " + std::to_string(number) + " listing it", hint);
+    }
+    for (const char* sub : {"rgb", "disparity"}) {
+      std::string first;  // the lowest name: the message does not depend on the listing order
+      std::error_code ec;
+      for (std::filesystem::directory_iterator it(folder_ + "/" + sub, ec), end; !ec && it != end;
+           it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (is_episode_image(name) && (first.empty() || name < first)) first = name;
+      }
+      check_argument(first.empty(), where.c_str(), expected,
+                     std::string("its image ") + sub + "/" + first, hint);
+    }
+  }
+  /// <episode>_<digits>.png, the names record() writes.
+  bool is_episode_image(const std::string& name) const {
+    const std::string prefix = episode_ + "_", suffix = ".png";
+    if (name.size() <= prefix.size() + suffix.size() ||
+        name.compare(0, prefix.size(), prefix) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+      return false;
+    }
+    for (std::size_t i = prefix.size(); i < name.size() - suffix.size(); ++i) {
+      if (!std::isdigit(static_cast<unsigned char>(name[i]))) return false;
+    }
+    return true;
+  }
+
   std::string folder_, episode_;
   std::ofstream index_;
   long count_ = 0;

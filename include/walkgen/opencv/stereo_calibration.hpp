@@ -18,11 +18,19 @@
 /// matrix Q that walkgen::StereoDepth uses.
 ///
 /// Errors (convention 10): a missing or unreadable image, images of different sizes, a board
-/// that is not found, a calibration file that cannot be read or lacks a key throw
-/// walkgen::invalid_argument naming the image, file or key.
+/// that is not found throw walkgen::invalid_argument naming the image. A calibration file that
+/// cannot be read, is truncated, lacks a key or holds a value out of range (a matrix of another
+/// shape, a non-finite entry, an image side outside 1..100000 px) throws naming the file and the
+/// key; OpenCV's own exceptions never escape the loader. Calibration files are replaced
+/// atomically (walkgen/core/atomic_file.hpp): an interrupted save leaves the previous file.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -31,6 +39,7 @@
 #include <utility>
 #include <vector>
 
+#include "walkgen/core/atomic_file.hpp"
 #include "walkgen/core/exceptions.hpp"
 
 namespace walkgen {
@@ -383,92 +392,288 @@ inline StereoCalibration calibrate_stereo_files(const std::vector<std::string>& 
 }
 
 // --- YAML files (cv::FileStorage) ---------------------------------------------------------------
+//
+// The file that save_stereo_calibration writes (format 2), in this order:
+//
+//   walkgen_calibration_format: 2       the format; present: the end marker below is required
+//   image_width, image_height           [px], integers in 1..100000
+//   K1, D1, K2, D2                      !!opencv-matrix: K 3x3, D 1xn (n in 4, 5, 8, 12, 14)
+//   R, T, E, F                          3x3, 3x1, 3x3, 3x3
+//   R1, R2, P1, P2, Q                   3x3, 3x3, 3x4, 3x4, 4x4
+//   rms, mean_epipolar_error, rms_left, rms_right    [px], finite numbers >= 0
+//   complete: 1                         the end marker, written last
+//
+// A matrix is a map of rows, cols (integers), dt (d or f: double or float) and data (rows x cols
+// finite numbers, row by row), OpenCV's !!opencv-matrix. A file cut anywhere before its last line
+// lacks the end marker; content alone cannot tell (rms 4.09 and 4.0912 are both numbers).
 
 namespace detail {
 
-inline cv::FileNode required_node(const cv::FileStorage& fs, const std::string& path,
-                                  const std::string& key) {
-  const cv::FileNode node = fs[key];
-  check_argument(!node.empty() && !node.isNone(),
-                 ("walkgen::load_stereo_calibration: '" + path + "'").c_str(),
-                 "the key '" + key + "'", "a file without it",
-                 "write the file with walkgen::save_stereo_calibration");
-  return node;
+constexpr int kStereoCalibrationFormat = 2;                    ///< walkgen_calibration_format
+constexpr int kMaxCalibrationImageSide = 100000;               ///< [px]
+constexpr std::uintmax_t kMaxCalibrationFileBytes = 1u << 20;  ///< 1 MiB; a saved file: ~2.5 kB
+
+inline std::string file_node_kind(const cv::FileNode& n) {
+  if (n.empty() || n.isNone()) return "nothing";
+  if (n.isInt()) return "the integer " + std::to_string(static_cast<int>(n));
+  if (n.isReal()) return "the number " + std::to_string(static_cast<double>(n));
+  if (n.isString()) {  // at most 40 characters, bytes outside printable ASCII as \xNN
+    const std::string text = static_cast<std::string>(n);
+    std::string shown;
+    for (std::size_t i = 0; i < text.size() && i < 40; ++i) {
+      const auto byte = static_cast<unsigned char>(text[i]);
+      if (byte >= 0x20 && byte < 0x7f) {
+        shown += text[i];
+      } else {
+        const char* hex = "0123456789abcdef";
+        shown += std::string("\\x") + hex[byte >> 4] + hex[byte & 15];
+      }
+    }
+    return "the text '" + shown + (text.size() > 40 ? "...'" : "'");
+  }
+  if (n.isSeq()) return "a sequence";
+  if (n.isMap()) return "a map";
+  return "a node of OpenCV type " + std::to_string(n.type());
 }
 
-inline cv::Mat required_matrix(const cv::FileStorage& fs, const std::string& path,
-                               const std::string& key, int rows, int cols) {
-  cv::Mat m;
-  required_node(fs, path, key) >> m;
-  check_argument(
-      m.rows == rows && (cols < 0 || m.cols == cols),
-      ("walkgen::load_stereo_calibration: '" + path + "', key '" + key + "'").c_str(),
-      "a " + std::to_string(rows) + "x" + (cols < 0 ? "n" : std::to_string(cols)) + " matrix",
-      std::to_string(m.rows) + "x" + std::to_string(m.cols));
-  m.convertTo(m, CV_64F);
-  return m;
+/// Reads the keys of one calibration file; each error names the file and the key.
+class CalibrationFileReader {
+ public:
+  explicit CalibrationFileReader(const std::string& path) : path_(path) {}
+
+  void set_root(const cv::FileNode& root) { root_ = root; }
+  bool has(const char* key) const {
+    if (!root_.isMap()) return false;
+    const cv::FileNode n = root_[key];
+    return !n.empty() && !n.isNone();
+  }
+  /// "walkgen::load_stereo_calibration: '<path>'[, key '<key>']" (the key being read).
+  std::string where() const {
+    return "walkgen::load_stereo_calibration: '" + path_ + "'" +
+           (key_.empty() ? std::string() : ", key '" + key_ + "'");
+  }
+
+  cv::FileNode node(const std::string& key, const char* hint = kMissingHint) {
+    key_ = key;
+    cv::FileNode n;
+    if (root_.isMap()) n = root_[key];
+    if (n.empty() || n.isNone()) {
+      fail("the key",
+           root_.isMap()
+               ? "a file without it"
+               : "a file whose top level is " + file_node_kind(root_) + ", not a map of keys",
+           hint);
+    }
+    return n;
+  }
+
+  int integer(const std::string& key, int lo, int hi) {
+    const cv::FileNode n = node(key);
+    const std::string range = "an integer in " + std::to_string(lo) + ".." + std::to_string(hi);
+    check(n.isInt(), range, file_node_kind(n));
+    const int v = static_cast<int>(n);
+    check(v >= lo && v <= hi, range, v);
+    return v;
+  }
+
+  double non_negative(const std::string& key) {
+    const cv::FileNode n = node(key);
+    check(n.isInt() || n.isReal(), "a finite number >= 0", file_node_kind(n));
+    const double v = static_cast<double>(n);
+    check(std::isfinite(v) && v >= 0.0, "a finite number >= 0", v);
+    return v;
+  }
+
+  /// A rows x cols matrix (cols: one of `cols`) as CV_64F; sizes, type and count are checked
+  /// before anything is allocated.
+  cv::Mat matrix(const std::string& key, int rows, std::initializer_list<int> cols) {
+    const cv::FileNode n = node(key);
+    std::string shape = std::to_string(rows) + "x";
+    if (cols.size() == 1) {
+      shape += std::to_string(*cols.begin());
+    } else {
+      shape += "n matrix, n in {";
+      for (const int c : cols) shape += (c == *cols.begin() ? "" : ", ") + std::to_string(c);
+      shape += "}";
+    }
+    shape = "a " + shape + (cols.size() == 1 ? " matrix" : "");
+    check(n.isMap(), shape + " (!!opencv-matrix: rows, cols, dt, data)", file_node_kind(n));
+    const cv::FileNode r = n["rows"], c = n["cols"], dt = n["dt"], data = n["data"];
+    check(r.isInt(), shape, "rows: " + file_node_kind(r));
+    check(c.isInt(), shape, "cols: " + file_node_kind(c));
+    const int nr = static_cast<int>(r), nc = static_cast<int>(c);
+    check(nr == rows && std::find(cols.begin(), cols.end(), nc) != cols.end(), shape,
+          std::to_string(nr) + "x" + std::to_string(nc));
+    check(dt.isString() &&
+              (static_cast<std::string>(dt) == "d" || static_cast<std::string>(dt) == "f"),
+          "dt: d or f (double or float)", "dt: " + file_node_kind(dt));
+    const std::size_t count = static_cast<std::size_t>(nr) * static_cast<std::size_t>(nc);
+    check(data.isSeq(), "data: a sequence of " + std::to_string(count) + " numbers",
+          "data: " + file_node_kind(data));
+    check(data.size() == count, "data: " + std::to_string(count) + " numbers (rows x cols)",
+          std::to_string(data.size()));
+    cv::Mat m(nr, nc, CV_64F);
+    std::size_t i = 0;
+    for (cv::FileNodeIterator it = data.begin(); it != data.end() && i < count; ++it, ++i) {
+      const cv::FileNode e = *it;
+      const std::string at = "data[" + std::to_string(i) + "]: ";
+      check(e.isInt() || e.isReal(), "finite numbers", at + file_node_kind(e));
+      const double v = static_cast<double>(e);
+      check(std::isfinite(v), "finite numbers", at + std::to_string(v));
+      m.at<double>(static_cast<int>(i) / nc, static_cast<int>(i) % nc) = v;
+    }
+    check(i == count, "data: " + std::to_string(count) + " numbers", std::to_string(i));
+    return m;
+  }
+
+  /// The end marker of format 2: complete: 1, written last.
+  void end_marker() {
+    const cv::FileNode n =
+        node("complete",
+             "the file is truncated (a save that was interrupted, a copy cut short): "
+             "calibrate again or restore the file");
+    check(n.isInt() && static_cast<int>(n) == 1, "1 (the end marker)", file_node_kind(n));
+  }
+
+  template <typename Expected, typename Got>
+  void check(bool ok, const Expected& expected, const Got& got, const char* hint = nullptr) {
+    if (!ok) fail(expected, got, hint);
+  }
+  template <typename Expected, typename Got>
+  [[noreturn]] void fail(const Expected& expected, const Got& got, const char* hint = nullptr) {
+    throw invalid_argument(expected_got(where().c_str(), expected, got, hint));
+  }
+
+ private:
+  static constexpr const char* kMissingHint =
+      "a truncated file, or one not written by walkgen::save_stereo_calibration";
+  std::string path_, key_;
+  cv::FileNode root_;
+};
+
+inline StereoCalibration read_stereo_calibration(CalibrationFileReader& in) {
+  if (in.has("walkgen_calibration_format")) {
+    const cv::FileNode format = in.node("walkgen_calibration_format");
+    in.check(format.isInt() && static_cast<int>(format) == kStereoCalibrationFormat,
+             std::to_string(kStereoCalibrationFormat), file_node_kind(format),
+             "written by another walkgen version?");
+    in.end_marker();  // first: a truncated file is named as such
+  }
+  StereoCalibration c;
+  const int width = in.integer("image_width", 1, kMaxCalibrationImageSide);
+  const int height = in.integer("image_height", 1, kMaxCalibrationImageSide);
+  c.left.image_size = c.right.image_size = cv::Size(width, height);
+  const std::initializer_list<int> distortion = {4, 5, 8, 12, 14};  // OpenCV's models
+  c.left.camera_matrix = in.matrix("K1", 3, {3});
+  c.left.distortion = in.matrix("D1", 1, distortion);
+  c.right.camera_matrix = in.matrix("K2", 3, {3});
+  c.right.distortion = in.matrix("D2", 1, distortion);
+  c.rotation = in.matrix("R", 3, {3});
+  c.translation = in.matrix("T", 3, {1});
+  c.essential = in.matrix("E", 3, {3});
+  c.fundamental = in.matrix("F", 3, {3});
+  c.rectification_left = in.matrix("R1", 3, {3});
+  c.rectification_right = in.matrix("R2", 3, {3});
+  c.projection_left = in.matrix("P1", 3, {4});
+  c.projection_right = in.matrix("P2", 3, {4});
+  c.disparity_to_depth = in.matrix("Q", 4, {4});
+  c.rms = in.non_negative("rms");
+  c.mean_epipolar_error = in.non_negative("mean_epipolar_error");
+  c.left.rms = in.non_negative("rms_left");
+  c.right.rms = in.non_negative("rms_right");
+  return c;
 }
 
 }  // namespace detail
 
-/// Writes a stereo calibration as YAML (cv::FileStorage): image_width, image_height, K1, D1, K2,
-/// D2, R, T, E, F, R1, R2, P1, P2, Q, rms, mean_epipolar_error, rms_left, rms_right.
-/// @throws walkgen::invalid_argument when the file cannot be opened for writing.
-inline void save_stereo_calibration(const StereoCalibration& c, const std::string& path) {
-  cv::FileStorage fs(path, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
-  check_argument(fs.isOpened(), "walkgen::save_stereo_calibration", "a writable file",
-                 "'" + path + "'");
-  fs << "image_width" << c.left.image_size.width << "image_height" << c.left.image_size.height;
-  fs << "K1" << c.left.camera_matrix << "D1" << c.left.distortion;
-  fs << "K2" << c.right.camera_matrix << "D2" << c.right.distortion;
-  fs << "R" << c.rotation << "T" << c.translation << "E" << c.essential << "F" << c.fundamental;
-  fs << "R1" << c.rectification_left << "R2" << c.rectification_right;
-  fs << "P1" << c.projection_left << "P2" << c.projection_right << "Q" << c.disparity_to_depth;
-  fs << "rms" << c.rms << "mean_epipolar_error" << c.mean_epipolar_error;
-  fs << "rms_left" << c.left.rms << "rms_right" << c.right.rms;
+/// Reads a file written by save_stereo_calibration (the format above). A file without
+/// walkgen_calibration_format (written before the end marker existed, format 1) loads when every
+/// key is present and valid; such a file cut inside its last number (rms_right) cannot be told
+/// from a complete one: save it again to add the marker.
+/// @throws walkgen::invalid_argument naming the file, and the key where one is at fault, when
+///   the file is missing, larger than 1 MiB, not text, not YAML, truncated (no end marker), or a
+///   key is missing or out of range: an image side outside 1..100000 px, a matrix of another
+///   shape or type, with a data count other than rows x cols or a non-finite entry, an rms that
+///   is negative or not finite. Every error of OpenCV's parser becomes this exception too.
+[[nodiscard]] inline StereoCalibration load_stereo_calibration(const std::string& path) {
+  constexpr const char* where = "walkgen::load_stereo_calibration";
+  std::error_code ec;
+  check_argument(std::filesystem::is_regular_file(path, ec), where, "a readable YAML file",
+                 "'" + path + "' (missing)");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  check_argument(!ec && bytes <= detail::kMaxCalibrationFileBytes, where,
+                 "a calibration file of at most 1 MiB",
+                 "'" + path + "' (" + (ec ? ec.message() : std::to_string(bytes) + " bytes") + ")");
+  std::ifstream file(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  check_argument(!file.bad() && text.size() == bytes, where, "a readable YAML file",
+                 "'" + path + "' (unreadable)");
+  const std::size_t nul = text.find('\0');
+  check_argument(nul == std::string::npos, where, "a text file",
+                 "'" + path + "' (a NUL byte at offset " + std::to_string(nul) + ")");
+  detail::CalibrationFileReader reader(path);
+  try {
+    // From memory, as YAML: no XML or JSON parser, no .gz or '?' handling of the file name.
+    cv::FileStorage fs(
+        text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+    check_argument(fs.isOpened(), where, "a YAML file written by cv::FileStorage",
+                   "'" + path + "' (unreadable)");
+    reader.set_root(fs.root());
+    return detail::read_stereo_calibration(reader);
+  } catch (const invalid_argument&) {
+    throw;
+  } catch (const cv::Exception& e) {
+    throw invalid_argument(detail::expected_got(
+        reader.where().c_str(), "a YAML file written by walkgen::save_stereo_calibration",
+        "OpenCV's error '" + e.err + "'"));
+  } catch (const std::exception& e) {  // OpenCV's parser also lets std::length_error escape
+    throw invalid_argument(detail::expected_got(
+        reader.where().c_str(), "a YAML file written by walkgen::save_stereo_calibration",
+        std::string("an error parsing it: ") + e.what()));
+  }
 }
 
-/// Reads a file written by save_stereo_calibration (rms values are optional).
-/// @throws walkgen::invalid_argument when the file cannot be read, or a key is missing or has the
-///   wrong shape (naming the file and the key).
-[[nodiscard]] inline StereoCalibration load_stereo_calibration(const std::string& path) {
-  check_argument(std::filesystem::is_regular_file(path), "walkgen::load_stereo_calibration",
-                 "a readable YAML file", "'" + path + "' (missing)");
-  cv::FileStorage fs;
-  try {
-    fs.open(path, cv::FileStorage::READ);
-  } catch (const cv::Exception& e) {
-    throw invalid_argument(
-        "walkgen::load_stereo_calibration: expected a YAML file written by "
-        "cv::FileStorage, got '" +
-        path + "' (" + e.what() + ")");
-  }
-  check_argument(fs.isOpened(), "walkgen::load_stereo_calibration", "a readable YAML file",
-                 "'" + path + "' (missing or unreadable)");
-  StereoCalibration c;
-  const int width = static_cast<int>(detail::required_node(fs, path, "image_width"));
-  const int height = static_cast<int>(detail::required_node(fs, path, "image_height"));
-  c.left.image_size = c.right.image_size = cv::Size(width, height);
-  c.left.camera_matrix = detail::required_matrix(fs, path, "K1", 3, 3);
-  c.left.distortion = detail::required_matrix(fs, path, "D1", 1, -1);
-  c.right.camera_matrix = detail::required_matrix(fs, path, "K2", 3, 3);
-  c.right.distortion = detail::required_matrix(fs, path, "D2", 1, -1);
-  c.rotation = detail::required_matrix(fs, path, "R", 3, 3);
-  c.translation = detail::required_matrix(fs, path, "T", 3, 1);
-  c.essential = detail::required_matrix(fs, path, "E", 3, 3);
-  c.fundamental = detail::required_matrix(fs, path, "F", 3, 3);
-  c.rectification_left = detail::required_matrix(fs, path, "R1", 3, 3);
-  c.rectification_right = detail::required_matrix(fs, path, "R2", 3, 3);
-  c.projection_left = detail::required_matrix(fs, path, "P1", 3, 4);
-  c.projection_right = detail::required_matrix(fs, path, "P2", 3, 4);
-  c.disparity_to_depth = detail::required_matrix(fs, path, "Q", 4, 4);
-  if (!fs["rms"].empty()) c.rms = static_cast<double>(fs["rms"]);
-  if (!fs["mean_epipolar_error"].empty()) {
-    c.mean_epipolar_error = static_cast<double>(fs["mean_epipolar_error"]);
-  }
-  if (!fs["rms_left"].empty()) c.left.rms = static_cast<double>(fs["rms_left"]);
-  if (!fs["rms_right"].empty()) c.right.rms = static_cast<double>(fs["rms_right"]);
-  return c;
+/// Writes a stereo calibration as YAML (cv::FileStorage) in the format above: the keys
+/// walkgen_calibration_format (2), image_width, image_height, K1, D1, K2, D2, R, T, E, F, R1, R2,
+/// P1, P2, Q, rms, mean_epipolar_error, rms_left, rms_right, and last the end marker complete: 1.
+/// The file is replaced atomically (walkgen::write_atomically): written to a temporary file in
+/// the same folder, read back with load_stereo_calibration, then renamed over `path`. A save
+/// that fails or is interrupted (a crash, a full disk) leaves the previous file as it was.
+/// @throws walkgen::invalid_argument naming `path` when the folder is missing or not writable,
+///   the file cannot be written completely, or it would not load (a matrix of the wrong shape,
+///   non-finite values, an image side outside 1..100000 px, a negative rms): the previous file,
+///   if any, is then unchanged.
+inline void save_stereo_calibration(const StereoCalibration& c, const std::string& path) {
+  constexpr const char* where = "walkgen::save_stereo_calibration";
+  write_atomically(path, [&](const std::string& temp) {
+    try {
+      cv::FileStorage fs(temp, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+      check_argument(fs.isOpened(), where, "a writable file", "'" + path + "'");
+      fs << "walkgen_calibration_format" << detail::kStereoCalibrationFormat;
+      fs << "image_width" << c.left.image_size.width << "image_height" << c.left.image_size.height;
+      fs << "K1" << c.left.camera_matrix << "D1" << c.left.distortion;
+      fs << "K2" << c.right.camera_matrix << "D2" << c.right.distortion;
+      fs << "R" << c.rotation << "T" << c.translation << "E" << c.essential << "F" << c.fundamental;
+      fs << "R1" << c.rectification_left << "R2" << c.rectification_right;
+      fs << "P1" << c.projection_left << "P2" << c.projection_right << "Q" << c.disparity_to_depth;
+      fs << "rms" << c.rms << "mean_epipolar_error" << c.mean_epipolar_error;
+      fs << "rms_left" << c.left.rms << "rms_right" << c.right.rms;
+      fs << "complete" << 1;
+      fs.release();
+    } catch (const cv::Exception& e) {
+      throw invalid_argument(
+          detail::expected_got(where, "a calibration OpenCV can write to '" + path + "'",
+                               "OpenCV's error '" + e.err + "'"));
+    }
+    try {  // cv::FileStorage does not report write errors (a full disk): read the file back.
+      (void)load_stereo_calibration(temp);
+    } catch (const invalid_argument& e) {
+      throw invalid_argument(detail::expected_got(
+          where, "'" + path + "' written completely, with a calibration that loads",
+          std::string("an error reading it back: ") + e.what(),
+          "the previous file, if any, is unchanged"));
+    }
+  });
 }
 
 /// Rectification maps of a calibrated pair: remaps raw left/right images onto the common image

@@ -11,16 +11,25 @@
 /// are rejected. Ignored: visuals, collisions, materials, <mimic> (a mimic joint is read as an
 /// independent joint), <dynamics>, and every other element (gazebo, transmission, sensor, ...).
 ///
+/// Every number must be finite and within the bounds below (UrdfBounds: masses, lengths, angles,
+/// inertias, axis lengths), so that a loaded robot has a finite total mass, centre of mass and
+/// forward kinematics. Names must be non-empty and unique among the links and among the joints.
+///
 /// Every problem throws walkgen::invalid_argument naming the source, the line and the element,
 /// e.g. "robot.urdf:12: <joint name='l_knee'> <origin> xyz: expected 3 finite numbers separated
-/// by spaces, got '0 0'". Problems of the tree's shape (unknown links, cycles, several roots)
-/// are found by KinematicTree and reported with the source prepended.
+/// by spaces, got '0 0'". Problems of the tree's shape (unknown links, a link with two parents,
+/// cycles, several roots) are found by KinematicTree's checks and reported with the source
+/// prepended, e.g. "robot.urdf: KinematicTree: joint 'l_knee': expected a parent link ...".
 
 #include <tinyxml2.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <locale>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -29,7 +38,40 @@
 
 namespace walkgen {
 
+/// What the URDF loader accepts (docs/kinematics.md, "URDF limits"): bounds far beyond any
+/// walking robot that keep the total mass, the centre of mass and the forward kinematics finite.
+struct UrdfBounds {
+  /// A link's mass [kg]: 0 (massless) or in [kMinMass, kMaxMass].
+  static constexpr double kMinMass = 1e-9;
+  static constexpr double kMaxMass = 1e6;
+  /// |ixx| ... |izz| [kg m²]; the inertia must also be positive semidefinite: its smallest
+  /// eigenvalue >= -kInertiaTolerance times its largest (rounding in the file).
+  static constexpr double kMaxInertia = 1e12;
+  static constexpr double kInertiaTolerance = 1e-3;
+  /// |x|, |y|, |z| of every <origin xyz> [m].
+  static constexpr double kMaxLength = 1e3;
+  /// |roll|, |pitch|, |yaw| of every <origin rpy> and |lower|, |upper| of a <limit> [rad].
+  static constexpr double kMaxAngle = 1e3;
+  /// The length of a joint's <axis xyz> before it is normalised.
+  static constexpr double kMinAxisLength = 1e-6;
+  static constexpr double kMaxAxisLength = 1e6;
+};
+
 namespace detail {
+
+/// A bound for messages: 1e6 as "1e6", 1000 as "1000", 1e-9 as "1e-9".
+inline std::string urdf_bound_text(double bound) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", bound);
+  std::string text = buffer;
+  const auto e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string exponent = text.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  if (exponent[0] == '+' || exponent[0] == '-') exponent.erase(0, 1);
+  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
+  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+}
 
 /// An element of the document being read. Messages start with where():
 /// "<source>:<line>: <joint name='x'> <origin> xyz".
@@ -91,6 +133,33 @@ struct UrdfElement {
   double number(const char* attribute, const char* fallback = nullptr) const {
     return numbers<1>(attribute, fallback)[0];
   }
+
+  /// numbers(), each within [-bound, bound]; `what` names them, e.g. "coordinates", `unit` "m".
+  template <int Count>
+  Eigen::Matrix<double, Count, 1> bounded_numbers(const char* attribute, double bound,
+                                                  const char* what, const char* unit,
+                                                  const char* fallback = nullptr) const {
+    const Eigen::Matrix<double, Count, 1> out = numbers<Count>(attribute, fallback);
+    if (out.cwiseAbs().maxCoeff() > bound) {
+      const char* value = element->Attribute(attribute);
+      check_argument(false, where(attribute).c_str(),
+                     std::string(what) + " in [-" + urdf_bound_text(bound) + ", " +
+                         urdf_bound_text(bound) + "] " + unit,
+                     "'" + std::string(value != nullptr ? value : fallback) + "'");
+    }
+    return out;
+  }
+  double bounded_number(const char* attribute, double bound, const char* what, const char* unit,
+                        const char* fallback = nullptr) const {
+    return bounded_numbers<1>(attribute, bound, what, unit, fallback)[0];
+  }
+
+  /// A name attribute (of the element, or "link" of <parent>/<child>): present and non-empty.
+  std::string name(const char* attribute) const {
+    std::string value = text(attribute);
+    check_argument(!value.empty(), where(attribute).c_str(), "a non-empty name", "''");
+    return value;
+  }
 };
 
 /// <origin xyz rpy> of `e` (each defaults to zero, as does a missing <origin>).
@@ -99,26 +168,43 @@ inline void read_urdf_origin(const UrdfElement& e, Eigen::Vector3d& xyz, Eigen::
   xyz.setZero();
   rpy.setZero();
   if (origin.element == nullptr) return;
-  xyz = origin.numbers<3>("xyz", "0 0 0");
-  rpy = origin.numbers<3>("rpy", "0 0 0");
+  xyz = origin.bounded_numbers<3>("xyz", UrdfBounds::kMaxLength, "3 coordinates", "m", "0 0 0");
+  rpy = origin.bounded_numbers<3>("rpy", UrdfBounds::kMaxAngle, "3 angles", "rad", "0 0 0");
 }
 
 inline LinkDescription read_urdf_link(const UrdfElement& e) {
   LinkDescription link;
-  link.name = e.text("name");
+  link.name = e.name("name");
   const UrdfElement inertial = e.child("inertial", false);
   if (inertial.element == nullptr) return link;  // massless
   Eigen::Vector3d xyz, rpy;
   read_urdf_origin(inertial, xyz, rpy);
   const UrdfElement mass = inertial.child("mass", true);
   link.mass = mass.number("value");
-  check_argument(link.mass >= 0.0, mass.where("value").c_str(), "a mass >= 0 kg", link.mass);
+  check_argument(
+      link.mass == 0.0 || (link.mass >= UrdfBounds::kMinMass && link.mass <= UrdfBounds::kMaxMass),
+      mass.where("value").c_str(),
+      "a mass of 0 kg or in [" + urdf_bound_text(UrdfBounds::kMinMass) + ", " +
+          urdf_bound_text(UrdfBounds::kMaxMass) + "] kg",
+      link.mass);
+  // Every attribute is read before the matrix is filled: a throw in the middle of Eigen's comma
+  // initializer would trip its "too few coefficients" assertion in a Debug build.
   const UrdfElement inertia = inertial.child("inertia", true);
-  const double ixy = inertia.number("ixy"), ixz = inertia.number("ixz"),
-               iyz = inertia.number("iyz");
+  const auto moment = [&](const char* attribute) {
+    return inertia.bounded_number(attribute, UrdfBounds::kMaxInertia, "an inertia entry", "kg m^2");
+  };
+  const double ixx = moment("ixx"), ixy = moment("ixy"), ixz = moment("ixz"), iyy = moment("iyy"),
+               iyz = moment("iyz"), izz = moment("izz");
   Eigen::Matrix3d I;
-  I << inertia.number("ixx"), ixy, ixz, ixy, inertia.number("iyy"), iyz, ixz, iyz,
-      inertia.number("izz");
+  I << ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz;
+  const Eigen::Vector3d eigenvalues =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  check_argument(
+      eigenvalues.minCoeff() >= -UrdfBounds::kInertiaTolerance * eigenvalues.cwiseAbs().maxCoeff(),
+      inertia.where().c_str(),
+      "a positive semidefinite inertia (principal moments >= 0, up to " +
+          urdf_bound_text(UrdfBounds::kInertiaTolerance) + " of the largest)",
+      "principal moments " + vector_text(eigenvalues) + " kg m^2");
   const Eigen::Matrix3d R = rotation_from_rpy(rpy);  // inertia frame -> link frame
   link.com = xyz;
   link.inertia = R * I * R.transpose();
@@ -128,26 +214,35 @@ inline LinkDescription read_urdf_link(const UrdfElement& e) {
 
 inline JointDescription read_urdf_joint(const UrdfElement& e) {
   JointDescription joint;
-  joint.name = e.text("name");
+  joint.name = e.name("name");
   const std::string type = e.text("type");
   const bool revolute = type == "revolute", continuous = type == "continuous";
   check_argument(revolute || continuous || type == "fixed", e.where("type").c_str(),
                  "revolute, continuous or fixed", "'" + type + "'",
                  "walkgen's kinematic tree has rotary and fixed joints only");
   joint.type = revolute || continuous ? JointType::revolute : JointType::fixed;
-  joint.parent = e.child("parent", true).text("link");
-  joint.child = e.child("child", true).text("link");
+  joint.parent = e.child("parent", true).name("link");
+  joint.child = e.child("child", true).name("link");
   read_urdf_origin(e, joint.xyz, joint.rpy);
   if (joint.type == JointType::fixed) return joint;
   const UrdfElement axis = e.child("axis", false);
   if (axis.element != nullptr) {
     joint.axis = axis.numbers<3>("xyz", "1 0 0");
-    check_argument(joint.axis.norm() > 0.0, axis.where("xyz").c_str(), "a non-zero axis", "0 0 0");
+    // Bounded before the norm: the squares of (1e200, 0, 0) overflow, and it normalises to 0.
+    const double length = joint.axis.cwiseAbs().maxCoeff() <= UrdfBounds::kMaxAxisLength
+                              ? joint.axis.norm()
+                              : std::numeric_limits<double>::infinity();
+    const char* text = axis.element->Attribute("xyz");
+    check_argument(length >= UrdfBounds::kMinAxisLength && length <= UrdfBounds::kMaxAxisLength,
+                   axis.where("xyz").c_str(),
+                   "a non-zero axis of length in [" + urdf_bound_text(UrdfBounds::kMinAxisLength) +
+                       ", " + urdf_bound_text(UrdfBounds::kMaxAxisLength) + "]",
+                   "'" + std::string(text != nullptr ? text : "1 0 0") + "'", "it is normalised");
   }
   if (revolute) {  // URDF: lower and upper default to 0
     const UrdfElement limit = e.child("limit", true);
-    joint.lower = limit.number("lower", "0");
-    joint.upper = limit.number("upper", "0");
+    joint.lower = limit.bounded_number("lower", UrdfBounds::kMaxAngle, "a limit", "rad", "0");
+    joint.upper = limit.bounded_number("upper", UrdfBounds::kMaxAngle, "a limit", "rad", "0");
     check_argument(joint.lower <= joint.upper, limit.where().c_str(), "lower <= upper",
                    std::to_string(joint.lower) + " > " + std::to_string(joint.upper));
   }
@@ -164,14 +259,10 @@ inline std::string read_urdf_file(const std::string& path, const char* where) {
   return text.str();
 }
 
-}  // namespace detail
-
-/// Reads URDF text into a KinematicDescription.
-/// @param source the document's name in messages (a path, or "URDF text")
-/// @throws walkgen::invalid_argument for malformed XML, a missing <robot>, missing or malformed
-/// attributes and unsupported joint types, naming the line and element.
-[[nodiscard]] inline KinematicDescription kinematic_description_from_urdf(
-    const std::string& urdf, const std::string& source = "URDF text") {
+/// URDF text as a KinematicDescription, every element checked but not the tree's shape (that
+/// is KinematicTree's, see kinematic_description_from_urdf()).
+inline KinematicDescription read_urdf_description(const std::string& urdf,
+                                                  const std::string& source) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(urdf.c_str(), urdf.size()) != tinyxml2::XML_SUCCESS) {
     const std::string where = source + ":" + std::to_string(doc.ErrorLineNum());
@@ -186,13 +277,58 @@ inline std::string read_urdf_file(const std::string& path, const char* where) {
   KinematicDescription d;
   const char* name = robot->Attribute("name");
   d.name = name != nullptr ? name : "";
+  std::map<std::string, int> link_lines, joint_lines;  // first line of each name
+  const auto unique = [&](std::map<std::string, int>& lines, const UrdfElement& e,
+                          const std::string& element_name, const char* kind) {
+    const auto [it, inserted] = lines.emplace(element_name, e.element->GetLineNum());
+    check_argument(inserted, e.where("name").c_str(), std::string("a unique ") + kind + " name",
+                   std::string(kind) + " '" + element_name + "' again after line " +
+                       std::to_string(it->second));
+  };
   for (const tinyxml2::XMLElement* e = robot->FirstChildElement(); e != nullptr;
        e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
-    if (tag == "link") d.links.push_back(detail::read_urdf_link({source, e, ""}));
-    if (tag == "joint") d.joints.push_back(detail::read_urdf_joint({source, e, ""}));
+    const UrdfElement element{source, e, ""};
+    if (tag == "link") {
+      d.links.push_back(read_urdf_link(element));
+      unique(link_lines, element, d.links.back().name, "link");
+    }
+    if (tag == "joint") {
+      d.joints.push_back(read_urdf_joint(element));
+      unique(joint_lines, element, d.joints.back().name, "joint");
+    }
   }
   check_argument(!d.links.empty(), source.c_str(), "a <robot> with at least one <link>", "none");
+  // Each mass is at most UrdfBounds::kMaxMass: the total overflows only for ~1e302 links.
+  double total = 0.0;
+  for (const auto& link : d.links) total += link.mass;
+  check_argument(std::isfinite(total), source.c_str(), "a finite total mass", total);
+  return d;
+}
+
+/// Runs `f` (KinematicTree's checks), prepending `source` to its message.
+template <typename F>
+auto with_urdf_source(const std::string& source, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const invalid_argument& e) {
+    throw invalid_argument(source + ": " + e.what());
+  }
+}
+
+}  // namespace detail
+
+/// Reads URDF text into a KinematicDescription and checks it as KinematicTree would.
+/// @param source the document's name in messages (a path, or "URDF text")
+/// @throws walkgen::invalid_argument for malformed XML, a missing <robot>, missing, malformed or
+/// out-of-bounds attributes (UrdfBounds), empty or repeated link or joint names and unsupported
+/// joint types, naming the line and element; and for a description that is no tree (see
+/// KinematicTree's constructor), naming the link or joint, with `source` prepended.
+[[nodiscard]] inline KinematicDescription kinematic_description_from_urdf(
+    const std::string& urdf, const std::string& source = "URDF text") {
+  KinematicDescription d = detail::read_urdf_description(urdf, source);
+  // One root, every link reached, no cycles: the checks of KinematicTree's constructor.
+  (void)detail::with_urdf_source(source, [&] { return detail::ordered_links(d); });
   return d;
 }
 
@@ -211,12 +347,8 @@ inline std::string read_urdf_file(const std::string& path, const char* where) {
 template <typename Scalar = double>
 [[nodiscard]] KinematicTree<Scalar> kinematic_tree_from_urdf(
     const std::string& urdf, const std::string& source = "URDF text") {
-  KinematicDescription d = kinematic_description_from_urdf(urdf, source);
-  try {
-    return KinematicTree<Scalar>(std::move(d));
-  } catch (const invalid_argument& e) {
-    throw invalid_argument(source + ": " + e.what());
-  }
+  KinematicDescription d = detail::read_urdf_description(urdf, source);
+  return detail::with_urdf_source(source, [&] { return KinematicTree<Scalar>(std::move(d)); });
 }
 
 /// Reads a URDF file into a KinematicTree<Scalar>; see kinematic_tree_from_urdf().

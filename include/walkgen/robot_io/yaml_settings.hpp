@@ -12,18 +12,23 @@
 ///   foot_x, foot_y, foot_q, gravity, obstacle (bool) with x_pos, y_pos, radius and an optional
 ///   margin, n, t, t_feedback, alpha, beta, gamma, cpu_time, nwsr;
 ///   walkgen's own: max_relative_yaw, max_relative_yaw_rate, sqp_iterations, sqp_corrections,
-///   sqp_tolerance, step_velocity_weight, max_command [3], footstep_regularization, and
+///   sqp_tolerance, step_velocity_weight, max_command [3], footstep_regularization,
+///   max_state_distance, max_com_speed, max_com_acceleration, and
 ///   obstacles: [{x, y, radius, margin}, ...].
-/// A missing key keeps its value from `defaults`. Obstacles: if the file has `obstacle` or
-/// `obstacles`, it describes the whole set (the `obstacles` list, plus the thesis's single
-/// obstacle when `obstacle: true`); otherwise the defaults' obstacles are kept. x_pos, y_pos,
-/// radius and margin are checked but unused unless `obstacle: true`, as in the thesis.
+/// Numbers must be finite (`.inf` and `.nan` are rejected); the integer keys (n, n_still, nwsr,
+/// sqp_iterations, sqp_corrections) are decimal digits in [0, 2147483647] (`010` is 10, `0x10`
+/// is an error). A missing key keeps its value from `defaults`. Obstacles: if the file has
+/// `obstacle` or `obstacles`, it describes the whole set (the `obstacles` list, plus the thesis's
+/// single obstacle when `obstacle: true`); otherwise the defaults' obstacles are kept. x_pos,
+/// y_pos, radius and margin are checked but unused unless `obstacle: true`, as in the thesis.
 ///
 /// Full reference with an example: docs/yaml.md.
 
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <climits>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -93,11 +98,35 @@ struct YamlValue {
     return T();  // not reached
   }
 
+  /// A finite number: "a number" if it does not read as one, "a finite number" for .inf/.nan.
+  template <typename Scalar>
+  Scalar number() const {
+    const Scalar value = as<Scalar>("a number");
+    check(std::isfinite(value), "a finite number");
+    return value;
+  }
+
   template <typename Scalar>
   void read(Scalar& out) const {
-    out = as<Scalar>("a number");
+    out = number<Scalar>();
   }
-  void read(int& out) const { out = as<int>("an integer"); }
+  /// A count: decimal digits (an optional '+') whose value fits an int. yaml-cpp's own
+  /// conversion would read 010 as octal and 0x10 as hex, and a negative or too large value
+  /// would fail with its exception or wrap.
+  void read(int& out) const {
+    const std::string expected = "an integer in [0, " + std::to_string(INT_MAX) + "]";
+    const std::string text = as<std::string>(expected.c_str());
+    const std::size_t first = !text.empty() && text[0] == '+' ? 1 : 0;
+    bool ok = text.size() > first;
+    long long value = 0;
+    for (std::size_t i = first; i < text.size() && ok; ++i) {
+      ok = text[i] >= '0' && text[i] <= '9';
+      value = value * 10 + (text[i] - '0');
+      ok = ok && value <= INT_MAX;
+    }
+    check(ok, expected);
+    out = static_cast<int>(value);
+  }
   void read(bool& out) const { out = as<bool>("true or false"); }
   void read(Foot& out) const {
     const std::string name = as<std::string>("left or right");
@@ -123,7 +152,7 @@ struct YamlValue {
   template <typename Scalar>
   void read_numbers(Scalar* out) const {
     for (std::size_t i = 0; i < node.size(); ++i) {
-      out[i] = child(node[i], "[" + std::to_string(i) + "]").template as<Scalar>("a number");
+      out[i] = child(node[i], "[" + std::to_string(i) + "]").template number<Scalar>();
     }
   }
 };
@@ -138,7 +167,7 @@ struct YamlTarget {
   std::string obstacle_where;
 
   void read_obstacle_key(const YamlValue& v, const char* key) {
-    obstacle_keys.emplace_back(key, v.as<Scalar>("a number"));
+    obstacle_keys.emplace_back(key, v.template number<Scalar>());
   }
   /// `obstacles: [{x, y, radius, margin}, ...]`, margin optional.
   void read_obstacles(const YamlValue& v) {
@@ -157,7 +186,7 @@ struct YamlTarget {
         check_argument(name == "x" || name == "y" || name == "radius" || name == "margin",
                        field_where.c_str(), "x, y, radius or margin", "an unknown key",
                        "an obstacle is {x: .., y: .., radius: .., margin: ..}, margin optional");
-        const Scalar value = field.as<Scalar>("a number");
+        const Scalar value = field.template number<Scalar>();
         if (name == "x") {
           o.x = value, has_x = true;
         } else if (name == "y") {
@@ -263,6 +292,9 @@ const std::vector<YamlField<Scalar>>& yaml_fields() {
       {"step_velocity_weight", [](V v, T t) { v.read(t.s.step_velocity_weight); }},
       {"max_command", [](V v, T t) { v.read(t.s.max_command); }},
       {"footstep_regularization", [](V v, T t) { v.read(t.s.footstep_regularization); }},
+      {"max_state_distance", [](V v, T t) { v.read(t.s.max_state_distance); }},
+      {"max_com_speed", [](V v, T t) { v.read(t.s.max_com_speed); }},
+      {"max_com_acceleration", [](V v, T t) { v.read(t.s.max_com_acceleration); }},
   };
   return fields;
 }
@@ -356,8 +388,19 @@ WalkingSettings<Scalar> walking_settings_from_node(const YAML::Node& root,
                                                    const WalkingSettings<Scalar>& defaults) {
   YamlTarget<Scalar> target;
   target.s = defaults;
-  for (const YamlEntry& e : yaml_entries<Scalar>(root, source)) {
-    find_yaml_field<Scalar>(e.key)->read(YamlValue{source, e.path, e.value}, target);
+  std::vector<YamlEntry> entries;
+  try {
+    entries = yaml_entries<Scalar>(root, source);
+  } catch (const YAML::Exception& e) {  // a yaml-cpp error the checks above did not foresee
+    throw invalid_argument(expected_got(source.c_str(), "a map of settings keys", e.what()));
+  }
+  for (const YamlEntry& e : entries) {
+    try {
+      find_yaml_field<Scalar>(e.key)->read(YamlValue{source, e.path, e.value}, target);
+    } catch (const YAML::Exception& error) {  // as above: the key and yaml-cpp's words
+      const std::string where = yaml_where(source, e.value, e.path);
+      throw invalid_argument(expected_got(where.c_str(), "a readable value", error.what()));
+    }
   }
   target.finish_obstacles();
   try {

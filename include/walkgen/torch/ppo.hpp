@@ -25,10 +25,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "walkgen/core/atomic_file.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
 
@@ -314,7 +316,12 @@ class TorchPpo {
   /// Saves the policy as a TorchScript module: forward(x) = μ_θ(x) (the test-mode action),
   /// value(x) = V_θ(x), log_std() = log σ; attributes observation_size, action_size, activation,
   /// actor_hidden, critic_hidden. Python: torch.jit.load(path)(torch.zeros(1, O)).
-  /// @throws walkgen::invalid_argument if the file cannot be written.
+  /// The file is replaced atomically (walkgen::write_atomically): the module is serialised in
+  /// memory, written to a temporary file in the same folder and renamed over `path`, so that a
+  /// save that fails or is interrupted (a crash, a full disk) leaves the previous policy loadable.
+  /// (libtorch's own file writer ends the process on a write error; it never sees the file.)
+  /// @throws walkgen::invalid_argument if the file cannot be written (the previous file, if any,
+  ///   is then unchanged).
   void save(const std::string& path) const {
     torch::jit::Module m("WalkgenPpoPolicy");
     for (const auto& p : model_->named_parameters())
@@ -333,12 +340,23 @@ class TorchPpo {
         << script_mlp("critic", s_.critic_hidden.size(), false)
         << "def log_std_values(self):\n    return self.log_std\n";
     m.define(src.str());
+    std::ostringstream bytes;
     try {
-      m.save(path);
+      m.save(bytes);
     } catch (const c10::Error& e) {
-      throw invalid_argument(detail::expected_got("TorchPpo::save", "a writable path", path,
-                                                  "does the folder exist?"));
+      throw invalid_argument(
+          detail::expected_got("TorchPpo::save", "a policy TorchScript can save",
+                               std::string("the error: ") + e.what_without_backtrace()));
     }
+    const std::string data = bytes.str();
+    write_atomically(path, [&](const std::string& temp) {
+      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+      out.write(data.data(), static_cast<std::streamsize>(data.size()));
+      out.close();
+      check_argument(!out.fail(), "TorchPpo::save",
+                     "'" + path + "' written (" + std::to_string(data.size()) + " bytes)",
+                     "a write error", "is the disk full, the folder writable?");
+    });
   }
 
   /// Loads a policy saved by save(): sizes and layers from the file, training hyper-parameters
