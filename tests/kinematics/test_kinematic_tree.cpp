@@ -219,7 +219,12 @@ TEST(KinematicTree, BadDescriptionsThrowNamingTheElement) {
 
   d = two_link_arm();
   d.joints[0].axis.setZero();
-  expect_error(d, {"joint 'shoulder'", "non-zero axis"});
+  expect_error(d, {"joint 'shoulder'", "axis of length in [1e-6, 1e6]"});
+
+  // Issue 21: (1e200, 0, 0) used to normalise to (0, 0, 0) and load.
+  d = two_link_arm();
+  d.joints[0].axis = Eigen::Vector3d(1e200, 0, 0);
+  expect_error(d, {"joint 'shoulder'", "axis of length in [1e-6, 1e6]"});
 
   d = two_link_arm();
   d.joints[1].lower = 1.0;
@@ -232,7 +237,12 @@ TEST(KinematicTree, BadDescriptionsThrowNamingTheElement) {
 
   d = two_link_arm();
   d.links[1].mass = -1.0;
-  expect_error(d, {"link 'upper'", "mass >= 0"});
+  expect_error(d, {"link 'upper'", "mass in [0, 1e6] kg"});
+
+  // Issue 21: two links of 1e308 kg used to load with a total mass of inf.
+  d = two_link_arm();
+  d.links[1].mass = d.links[2].mass = 1e308;
+  expect_error(d, {"link 'upper'", "mass in [0, 1e6] kg"});
 
   d = two_link_arm();
   d.links[1].inertia(0, 1) = 0.5;

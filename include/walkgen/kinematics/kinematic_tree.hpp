@@ -122,8 +122,8 @@ inline std::vector<OrderedLink> ordered_links(const KinematicDescription& d) {
     const std::string at = std::string(where) + ": link " + quote_name(l.name);
     check_argument(!l.name.empty(), where, "a name for every link", "an empty name");
     check_argument(find_link(l.name) == i, at.c_str(), "a unique name", "it twice");
-    check_argument(std::isfinite(l.mass) && l.mass >= 0.0, at.c_str(), "a finite mass >= 0 kg",
-                   l.mass);
+    check_argument(std::isfinite(l.mass) && l.mass >= 0.0 && l.mass <= 1e6, at.c_str(),
+                   "a mass in [0, 1e6] kg", l.mass);
     check_argument(l.com.allFinite() && l.inertia.allFinite(), at.c_str(),
                    "a finite centre of mass and inertia", "a non-finite value");
     check_argument(l.inertia.isApprox(l.inertia.transpose(), 1e-12) || l.inertia.isZero(0.0),
@@ -153,8 +153,10 @@ inline std::vector<OrderedLink> ordered_links(const KinematicDescription& d) {
                    "a finite origin xyz and rpy",
                    vector_text(jd.xyz) + " and " + vector_text(jd.rpy));
     if (jd.type == JointType::revolute) {
-      check_argument(jd.axis.allFinite() && jd.axis.norm() > 0.0, at.c_str(),
-                     "a finite non-zero axis", vector_text(jd.axis));
+      // The norm of (1e200, 0, 0) overflows and normalises to zero: bound it (issue 21).
+      const double length = jd.axis.allFinite() ? jd.axis.norm() : 0.0;
+      check_argument(length >= 1e-6 && length <= 1e6, at.c_str(),
+                     "a finite axis of length in [1e-6, 1e6]", vector_text(jd.axis));
       check_argument(!std::isnan(jd.lower) && !std::isnan(jd.upper) && jd.lower <= jd.upper,
                      at.c_str(), "limits with lower <= upper",
                      std::to_string(jd.lower) + " > " + std::to_string(jd.upper));
