@@ -586,12 +586,78 @@ inline StereoCalibration read_stereo_calibration(CalibrationFileReader& in) {
 
 }  // namespace detail
 
+namespace detail {
+
+/// The first line (1-based) of `text` that is not shaped like a line save_stereo_calibration
+/// writes, or 0. OpenCV's YAML parser loops forever on some malformed documents (e.g. a line
+/// `---%YAML:1.0` before `-$--`, found by tests/fuzz/fuzz_stereo_calibration.cpp), so only text
+/// made of these lines reaches it: `%YAML:1.0`, `---`, then `key: number` or
+/// `key: !!opencv-matrix` at column 0 (key of letters, digits, '_'), the matrix fields
+/// `   rows: N`, `   cols: N`, `   dt: x`, `   data: [ numbers`, and indented continuation lines
+/// of numbers, commas and the closing ']'.
+/// `key` receives the top-level key whose block holds that line ("" in the header).
+inline std::size_t calibration_text_problem(const std::string& text, std::string* key) {
+  const auto is_key_char = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  };
+  const auto only = [](const std::string& s, std::size_t from, const char* allowed) {
+    return s.find_first_not_of(allowed, from) == std::string::npos;
+  };
+  constexpr const char* kNumberChars = "0123456789eE.+-";
+  constexpr const char* kListChars = "0123456789eE.+-, ]";
+  std::size_t start = 0, number = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty() && is_key_char(line[0])) {  // a new block: name it by its key
+      std::size_t k = 0;
+      while (k < line.size() && is_key_char(line[k])) ++k;
+      *key = line.substr(0, k);
+    }
+    bool ok = false;
+    if (number == 1) {
+      ok = line == "%YAML:1.0";
+    } else if (number == 2) {
+      ok = line == "---";
+    } else if (line.empty()) {
+      ok = true;
+    } else if (is_key_char(line[0])) {  // key: value
+      std::size_t k = 0;
+      while (k < line.size() && is_key_char(line[k])) ++k;
+      ok = line.compare(k, 2, ": ") == 0 && k + 2 < line.size() &&
+           (line.compare(k + 2, std::string::npos, "!!opencv-matrix") == 0 ||
+            only(line, k + 2, kNumberChars));
+    } else if (line.compare(0, 3, "   ") == 0 && line.size() > 3 && line[3] != ' ') {
+      const std::string field = line.substr(3);
+      if (field.compare(0, 6, "rows: ") == 0 || field.compare(0, 6, "cols: ") == 0) {
+        ok = field.size() > 6 && only(field, 6, "0123456789");
+      } else if (field.compare(0, 4, "dt: ") == 0) {
+        ok = field.size() == 5 && field[4] >= 'a' && field[4] <= 'z';
+      } else if (field.compare(0, 7, "data: [") == 0) {
+        ok = only(field, 7, kListChars);
+      }
+    } else if (line[0] == ' ') {  // continuation of a data list
+      ok = only(line, 0, kListChars);
+    }
+    if (!ok) return number;
+  }
+  return 0;
+}
+
+}  // namespace detail
+
 /// Reads a file written by save_stereo_calibration (the format above). A file without
 /// walkgen_calibration_format (written before the end marker existed, format 1) loads when every
 /// key is present and valid; such a file cut inside its last number (rms_right) cannot be told
 /// from a complete one: save it again to add the marker.
 /// @throws walkgen::invalid_argument naming the file, and the key where one is at fault, when
-///   the file is missing, larger than 1 MiB, not text, not YAML, truncated (no end marker), or a
+///   the file is missing, larger than 1 MiB, not text, has a line shaped otherwise than those
+///   save_stereo_calibration writes (see detail::calibration_text_problem), is not YAML, is
+///   truncated (no end marker), or a
 ///   key is missing or out of range: an image side outside 1..100000 px, a matrix of another
 ///   shape or type, with a data count other than rows x cols or a non-finite entry, an rms that
 ///   is negative or not finite. Every error of OpenCV's parser becomes this exception too.
@@ -611,6 +677,15 @@ inline StereoCalibration read_stereo_calibration(CalibrationFileReader& in) {
   const std::size_t nul = text.find('\0');
   check_argument(nul == std::string::npos, where, "a text file",
                  "'" + path + "' (a NUL byte at offset " + std::to_string(nul) + ")");
+  std::string key;
+  if (const std::size_t line = detail::calibration_text_problem(text, &key)) {
+    check_argument(false, where, "a file as walkgen::save_stereo_calibration writes it",
+                   "'" + path + "' (line " + std::to_string(line) + ", in " +
+                       (key.empty() ? std::string("the header") : "key '" + key + "'") +
+                       ", is shaped otherwise)",
+                   "only %YAML:1.0, ---, key: number, key: !!opencv-matrix and its rows, cols, "
+                   "dt and data lines are read");
+  }
   detail::CalibrationFileReader reader(path);
   try {
     // From memory, as YAML: no XML or JSON parser, no .gz or '?' handling of the file name.
