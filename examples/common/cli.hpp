@@ -12,7 +12,6 @@
 #pragma once
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -22,6 +21,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "walkgen/core/decimal.hpp"
 #include "walkgen/version.hpp"
 
 namespace walkgen_examples {
@@ -64,14 +64,13 @@ CLI::Validator decimal_at_least(T min) {
         if (min < 0 || s.empty() || s.find_first_not_of("0123456789") != std::string::npos) {
           return bad + s + "'";
         }
-        s.erase(0, std::min(s.find_first_not_of('0'), s.size() - 1));  // "007" -> "7"
-        errno = 0;
-        const unsigned long long value = std::strtoull(s.c_str(), nullptr, 10);
         constexpr auto max = static_cast<unsigned long long>(std::numeric_limits<T>::max());
-        if (errno == ERANGE || value > max) {
+        unsigned long long value = 0;
+        if (!walkgen::detail::parse_decimal(s, max, &value)) {
           return "expected at most " + std::to_string(max) + ", got '" + s + "'";
         }
         if (value < static_cast<unsigned long long>(min)) return bad + s + "'";
+        s = std::to_string(value);  // "007" -> "7": CLI11 then reads it as decimal
         return {};
       },
       "");

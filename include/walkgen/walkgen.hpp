@@ -3,7 +3,9 @@
 /// Core umbrella header: everything that needs Eigen only. Never includes an adapter.
 
 #include "walkgen/core/assert.hpp"
+#include "walkgen/core/atomic_file.hpp"
 #include "walkgen/core/data_dir.hpp"
+#include "walkgen/core/decimal.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/core/math.hpp"

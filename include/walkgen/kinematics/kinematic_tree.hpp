@@ -40,6 +40,16 @@ namespace walkgen {
 /// Joint types of a KinematicTree. A URDF "continuous" joint is a revolute one without limits.
 enum class JointType { revolute, fixed };
 
+/// What KinematicTree accepts in a description beyond finiteness: a link's mass and the length
+/// of a joint's axis before it is normalised (the norm of (1e200, 0, 0) overflows to a zero
+/// axis; 1e308 kg links sum to an infinite mass). The URDF loader checks the same bounds with
+/// line numbers (UrdfBounds).
+struct KinematicBounds {
+  static constexpr double kMaxMass = 1e6;         ///< [kg]
+  static constexpr double kMinAxisLength = 1e-6;  ///< axis length, any unit
+  static constexpr double kMaxAxisLength = 1e6;
+};
+
 /// One rigid body of a KinematicDescription. Units: kg, m, kg m².
 struct LinkDescription {
   std::string name;
@@ -122,8 +132,8 @@ inline std::vector<OrderedLink> ordered_links(const KinematicDescription& d) {
     const std::string at = std::string(where) + ": link " + quote_name(l.name);
     check_argument(!l.name.empty(), where, "a name for every link", "an empty name");
     check_argument(find_link(l.name) == i, at.c_str(), "a unique name", "it twice");
-    check_argument(std::isfinite(l.mass) && l.mass >= 0.0 && l.mass <= 1e6, at.c_str(),
-                   "a mass in [0, 1e6] kg", l.mass);
+    check_argument(std::isfinite(l.mass) && l.mass >= 0.0 && l.mass <= KinematicBounds::kMaxMass,
+                   at.c_str(), "a mass in [0, 1e6] kg", l.mass);
     check_argument(l.com.allFinite() && l.inertia.allFinite(), at.c_str(),
                    "a finite centre of mass and inertia", "a non-finite value");
     check_argument(l.inertia.isApprox(l.inertia.transpose(), 1e-12) || l.inertia.isZero(0.0),
@@ -155,8 +165,9 @@ inline std::vector<OrderedLink> ordered_links(const KinematicDescription& d) {
     if (jd.type == JointType::revolute) {
       // The norm of (1e200, 0, 0) overflows and normalises to zero: bound it (issue 21).
       const double length = jd.axis.allFinite() ? jd.axis.norm() : 0.0;
-      check_argument(length >= 1e-6 && length <= 1e6, at.c_str(),
-                     "a finite axis of length in [1e-6, 1e6]", vector_text(jd.axis));
+      check_argument(
+          length >= KinematicBounds::kMinAxisLength && length <= KinematicBounds::kMaxAxisLength,
+          at.c_str(), "a finite axis of length in [1e-6, 1e6]", vector_text(jd.axis));
       check_argument(!std::isnan(jd.lower) && !std::isnan(jd.upper) && jd.lower <= jd.upper,
                      at.c_str(), "limits with lower <= upper",
                      std::to_string(jd.lower) + " > " + std::to_string(jd.upper));

@@ -245,21 +245,20 @@ void validate(const WalkingSettings<Scalar>& s) {
     check_argument(value >= lo && value <= hi, where,
                    "a count in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", value);
   };
-  auto check_up_to = [](const char* where, Scalar value, double hi, bool zero_ok) {
-    const bool ok = std::isfinite(value) && (zero_ok ? value >= Scalar(0) : value > Scalar(0)) &&
-                    value <= Scalar(hi);
-    if (!ok) {  // the message only on failure
+  // value in [lo, hi], or in (lo, hi] with lower_open; the message only on failure.
+  auto check_range = [](const char* where, Scalar value, double lo, double hi, bool lower_open) {
+    const bool above = lower_open ? value > Scalar(lo) : value >= Scalar(lo);
+    if (!(std::isfinite(value) && above && value <= Scalar(hi))) {
       std::ostringstream range;
-      range << (zero_ok ? "a value in [0, " : "a value in (0, ") << hi << "]";
+      range << "a value in " << (lower_open ? "(" : "[") << lo << ", " << hi << "]";
       check_argument(false, where, range.str(), value);
     }
   };
-  auto check_between = [](const char* where, Scalar value, double lo, double hi) {
-    if (!(std::isfinite(value) && value >= Scalar(lo) && value <= Scalar(hi))) {
-      std::ostringstream range;
-      range << "a value in [" << lo << ", " << hi << "]";
-      check_argument(false, where, range.str(), value);
-    }
+  auto check_up_to = [&](const char* where, Scalar value, double hi, bool zero_ok) {
+    check_range(where, value, 0.0, hi, !zero_ok);
+  };
+  auto check_between = [&](const char* where, Scalar value, double lo, double hi) {
+    check_range(where, value, lo, hi, false);
   };
   auto check_position = [](const char* where, Scalar value) {
     check_argument(std::isfinite(value) && std::abs(value) <= Scalar(lim::kMaxPosition), where,

@@ -356,7 +356,7 @@ class DenseQp {
   int find_violated(int* sign, Scalar* max_violation);
   void finish(QpStatus status, const char* message);
   bool rebuild_factorization(Index count);
-  bool within_tolerance();
+  bool within_tolerance(bool ax_current);
   /// A solve whose outputs overflowed: solved becomes inaccurate.
   void overflowed() {
     if (result_.status != QpStatus::solved) return;
@@ -695,15 +695,16 @@ void DenseQp<Scalar, Vars, Rows>::solve_active_set() {
 
 // Whether x is finite and every constraint, active and ignored ones included, holds within
 // 100 × the primal tolerance (violation_is_rounding's level); sets result_.primal_residual.
+// ax_current: Ax_ already holds A x (find_violated() computed it for this x).
 template <typename Scalar, int Vars, int Rows>
-bool DenseQp<Scalar, Vars, Rows>::within_tolerance() {
+bool DenseQp<Scalar, Vars, Rows>::within_tolerance(bool ax_current) {
   const auto& x = result_.x;
   if (!detail::all_finite(x)) return false;
   const Scalar loose = Scalar(100) * settings_.primal_tolerance;
   const Scalar xscale = Scalar(1) + x.template lpNorm<Eigen::Infinity>();
   bool ok = true;
   Scalar max_abs_viol = Scalar(0);
-  if (m_ > 0) Ax_.noalias() = A_ * x;
+  if (m_ > 0 && !ax_current) Ax_.noalias() = A_ * x;
   for (Index i = 0; i < m_; ++i) {
     const Scalar viol = std::max(lb_[i] - Ax_[i], Ax_[i] - ub_[i]);
     if (!(viol > Scalar(0))) continue;
@@ -958,8 +959,13 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
       // find_violated() skips the active constraints: verify every constraint before calling
       // x a solution. Where cancellation against a huge x0 = −H⁻¹g left an active constraint
       // off its bound, refine the active set's equations (at most twice).
-      for (int pass = 0; pass < 2 && !within_tolerance(); ++pass) refine_active_set();
-      if (!within_tolerance()) {
+      // find_violated() has just computed Ax for this x.
+      bool feasible = within_tolerance(true);
+      for (int pass = 0; pass < 2 && !feasible; ++pass) {
+        refine_active_set();
+        feasible = within_tolerance(false);
+      }
+      if (!feasible) {
         finish(QpStatus::inaccurate, "rounding left a constraint violated beyond the tolerance");
         return result_;
       }

@@ -43,7 +43,7 @@ namespace walkgen {
 struct UrdfBounds {
   /// A link's mass [kg]: 0 (massless) or in [kMinMass, kMaxMass].
   static constexpr double kMinMass = 1e-9;
-  static constexpr double kMaxMass = 1e6;
+  static constexpr double kMaxMass = KinematicBounds::kMaxMass;
   /// |ixx| ... |izz| [kg m²]; the inertia must also be positive semidefinite: its smallest
   /// eigenvalue >= -kInertiaTolerance times its largest (rounding in the file).
   static constexpr double kMaxInertia = 1e12;
@@ -53,8 +53,8 @@ struct UrdfBounds {
   /// |roll|, |pitch|, |yaw| of every <origin rpy> and |lower|, |upper| of a <limit> [rad].
   static constexpr double kMaxAngle = 1e3;
   /// The length of a joint's <axis xyz> before it is normalised.
-  static constexpr double kMinAxisLength = 1e-6;
-  static constexpr double kMaxAxisLength = 1e6;
+  static constexpr double kMinAxisLength = KinematicBounds::kMinAxisLength;
+  static constexpr double kMaxAxisLength = KinematicBounds::kMaxAxisLength;
 };
 
 namespace detail {

@@ -34,6 +34,7 @@
 #include <utility>
 #include <vector>
 
+#include "walkgen/core/decimal.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/mpc/settings.hpp"
@@ -116,15 +117,8 @@ struct YamlValue {
   void read(int& out) const {
     const std::string expected = "an integer in [0, " + std::to_string(INT_MAX) + "]";
     const std::string text = as<std::string>(expected.c_str());
-    const std::size_t first = !text.empty() && text[0] == '+' ? 1 : 0;
-    bool ok = text.size() > first;
-    long long value = 0;
-    for (std::size_t i = first; i < text.size() && ok; ++i) {
-      ok = text[i] >= '0' && text[i] <= '9';
-      value = value * 10 + (text[i] - '0');
-      ok = ok && value <= INT_MAX;
-    }
-    check(ok, expected);
+    unsigned long long value = 0;
+    check(parse_decimal(text, INT_MAX, &value, /*allow_plus=*/true), expected);
     out = static_cast<int>(value);
   }
   void read(bool& out) const { out = as<bool>("true or false"); }
