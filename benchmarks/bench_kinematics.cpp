@@ -10,10 +10,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "support/humanoid_ik.hpp"
+#include "walkgen/control/pattern_targets.hpp"
+#include "walkgen/humanoid/humanoid_ik.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 #ifdef WALKGEN_HAVE_KDL
 #include <kdl/chain.hpp>
@@ -24,17 +27,18 @@
 namespace {
 
 using Tree = walkgen::KinematicTree<double>;
-using walkgen_test::HumanoidIk;
+using walkgen::HumanoidIk;
 
 const Tree& tree() {
-  static const Tree t = walkgen_test::humanoid_tree();
+  static const Tree t = walkgen::humanoid_tree();
   return t;
 }
 
 /// Two gait cycles of a Heicub walk forward, 1280 command samples.
 const std::vector<walkgen::TrajectorySample<double>>& walk() {
-  static const auto samples = walkgen_test::heicub_walk(Eigen::Vector3d(0.03, 0.0, 0.0), 32);
-  return samples;
+  static const walkgen::PatternWalk w = walkgen::heicub_walk(Eigen::Vector3d(0.03, 0.0, 0.0), 32);
+  if (!w.ok()) throw std::runtime_error(w.message);
+  return w.samples;
 }
 
 /// Whole-body IK solutions along walk(), the reference of the KDL leg problems.
@@ -48,7 +52,7 @@ const WalkSolution& walk_solution() {
   static const WalkSolution solution = [] {
     WalkSolution s;
     HumanoidIk ik(tree());
-    walkgen_test::start_walk(ik, walk().front());
+    walkgen::start_walk(ik, walk().front());
     for (const auto& sample : walk()) {
       s.failures += ik.solve(walkgen::ik_target(sample)).status != walkgen::IkStatus::converged;
       s.q.push_back(ik.q());
@@ -71,7 +75,7 @@ template <typename Scalar>
 void BM_ForwardKinematics(benchmark::State& state) {
   const auto t = tree().cast<Scalar>();
   auto ws = t.make_workspace();
-  const Eigen::VectorXd q = walkgen_test::stand_configuration(tree());
+  const Eigen::VectorXd q = walkgen::stand_configuration(tree());
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> qs(q.size());
   for (Eigen::Index i = 0; i < q.size(); ++i) qs[i] = Scalar(q[i]);
   if constexpr (!std::is_same<Scalar, double>::value) {
@@ -85,11 +89,11 @@ void BM_ForwardKinematics(benchmark::State& state) {
   }
 }
 BENCHMARK_TEMPLATE(BM_ForwardKinematics, double);
-BENCHMARK_TEMPLATE(BM_ForwardKinematics, walkgen_test::HumanoidIk::Jet);
+BENCHMARK_TEMPLATE(BM_ForwardKinematics, walkgen::HumanoidIk::Jet);
 
 void BM_CenterOfMass(benchmark::State& state) {
   auto ws = tree().make_workspace();
-  const Eigen::VectorXd q = walkgen_test::stand_configuration(tree());
+  const Eigen::VectorXd q = walkgen::stand_configuration(tree());
   for (auto _ : state) {
     tree().forward_kinematics(Eigen::Vector3d(0, 0, 0.5), Eigen::Matrix3d::Identity(), q, ws);
     benchmark::DoNotOptimize(tree().center_of_mass(ws));
@@ -100,7 +104,7 @@ BENCHMARK(BM_CenterOfMass);
 void BM_CenterOfMassJacobian(benchmark::State& state) {
   auto ws = tree().make_workspace();
   tree().forward_kinematics(Eigen::Vector3d(0, 0, 0.5), Eigen::Matrix3d::Identity(),
-                            walkgen_test::stand_configuration(tree()), ws);
+                            walkgen::stand_configuration(tree()), ws);
   Eigen::Matrix<double, 3, Eigen::Dynamic> J(3, tree().num_velocities());
   for (auto _ : state) {
     tree().center_of_mass_jacobian(ws, J);

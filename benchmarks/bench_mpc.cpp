@@ -20,9 +20,9 @@
 
 #include <vector>
 
-#include "support/walking_scenarios.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 namespace {
 
@@ -35,7 +35,7 @@ walkgen::WalkingSettings<double> settings(int n) {
 
 template <int N>
 void BM_Tick(benchmark::State& state, const char* scenario) {
-  const walkgen_test::Scenario sc = walkgen_test::scenario(scenario);
+  const walkgen::Scenario sc = walkgen::scenario(scenario);
   auto s = settings(N);
   s.obstacles = sc.obstacles;
   walkgen::WalkingMpc<double, N> mpc(s);
@@ -87,8 +87,8 @@ void BM_QpOfTick(benchmark::State& state) {
       state.SkipWithError("QP failed while capturing");
       return;
     }
-    qps.push_back(
-        {mpc.qp_H(), mpc.qp_g(), mpc.qp_lb(), mpc.qp_ub(), mpc.qp_l(), mpc.qp_u(), mpc.qp_A()});
+    const auto& w = mpc.workspace();
+    qps.push_back({w.H, w.g, w.lb, w.ub, w.l, w.u, w.A});
     mpc.advance();
   }
   walkgen::DenseQp<double> qp(mpc.num_vars(), mpc.num_rows());
@@ -107,7 +107,7 @@ void BM_QpOfTick(benchmark::State& state) {
 void BM_Interpolate(benchmark::State& state) {
   const auto s = settings(16);
   walkgen::WalkingMpc<double, 16> mpc(s);
-  walkgen::WalkingInterpolator<double> interp(s);
+  walkgen::WalkingInterpolator<double> interp(walkgen::interpolation_settings(s));
   std::vector<walkgen::TrajectorySample<double>> out(std::size_t(interp.samples_per_tick()));
   if (mpc.set_command({0.1, 0.0, 0.0}) != walkgen::CommandStatus::accepted) {
     state.SkipWithError("command rejected");
@@ -121,7 +121,7 @@ void BM_Interpolate(benchmark::State& state) {
     if (k < 13) mpc.advance();
   }
   for (auto _ : state) {
-    interp.interpolate(mpc, out.data());
+    interp.interpolate(mpc.tick_plan(), out.data());
     benchmark::DoNotOptimize(out.data());
   }
 }

@@ -7,7 +7,7 @@
 //   BM_Random{Cold,WarmUpdate}/n   manufactured problems with n variables and 2n rows: a cold
 //                                  init()+solve(), and update()+solve() after a small change of
 //                                  g and the bounds (warm start + factorisation reuse).
-//   BM_Walking*                    the walking-like sequence of tests/support/walking_qp.hpp
+//   BM_Walking*                    the walking-like sequence walkgen::WalkingQpSequence
 //                                  (68 variables, 106 rows, 220 ticks cycled):
 //     Cold        init() + cold solve()          per tick (no warm start)
 //     WarmInit    init() + warm solve()          per tick (new H and A each tick)
@@ -21,15 +21,15 @@
 #include <random>
 #include <vector>
 
-#include "support/qp_problems.hpp"
-#include "support/walking_qp.hpp"
 #include "walkgen/qp/dense_qp.hpp"
+#include "walkgen/scenarios/manufactured_qp.hpp"
+#include "walkgen/scenarios/walking_qp_sequence.hpp"
 
 namespace {
 
 using walkgen::DenseQp;
 using walkgen::QpStatus;
-using Seq = walkgen_test::WalkingQpSequence;
+using Seq = walkgen::WalkingQpSequence;
 
 // Per-solve counters: changes = active-set changes per solve, active = active-set size.
 struct SolveStats {
@@ -60,8 +60,8 @@ void random_sizes(benchmark::internal::Benchmark* b) {
 
 void BM_RandomCold(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  walkgen_test::QpFactory f(123);
-  const auto p = f.make(n, 2 * n, walkgen_test::QpKind::generic);
+  walkgen::QpFactory f(123);
+  const auto p = f.make(n, 2 * n, walkgen::QpKind::generic);
   DenseQp<double> qp(n, 2 * n);
   qp.settings().warm_start = false;
   SolveStats stats;
@@ -76,10 +76,10 @@ BENCHMARK(BM_RandomCold)->Apply(random_sizes);
 
 void BM_RandomWarmUpdate(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  walkgen_test::QpFactory f(123);
-  const auto p = f.make(n, 2 * n, walkgen_test::QpKind::generic);
+  walkgen::QpFactory f(123);
+  const auto p = f.make(n, 2 * n, walkgen::QpKind::generic);
   // Eight variants: g perturbed by 1 %, feasible set shifted by a small δx.
-  std::vector<walkgen_test::QpProblem> variants(8, p);
+  std::vector<walkgen::QpProblem> variants(8, p);
   for (auto& v : variants) {
     Eigen::VectorXd dx(n);
     for (int j = 0; j < n; ++j) {
@@ -112,8 +112,8 @@ BENCHMARK(BM_RandomWarmUpdate)->Apply(random_sizes);
 // The walking sequence, built once: each tick's QP and, for the update path, the same tick with
 // the CoM measured up to ±2 mm off (8 variants).
 struct WalkingData {
-  std::vector<walkgen_test::WalkingQp> ticks;
-  std::vector<std::vector<walkgen_test::WalkingQp>> feedback;
+  std::vector<walkgen::WalkingQp> ticks;
+  std::vector<std::vector<walkgen::WalkingQp>> feedback;
   WalkingData() {
     Seq seq;
     DenseQp<double> qp(Seq::kVars, Seq::kRows);

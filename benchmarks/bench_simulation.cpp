@@ -8,12 +8,13 @@
 //       --benchmark_report_aggregates_only=true   (one command line)
 #include <benchmark/benchmark.h>
 
-#include "support/simulated_tasks.hpp"
+#include "walkgen/control/pattern_targets.hpp"
+#include "walkgen/simulation/humanoid_loop.hpp"
 
 namespace {
 
 const walkgen::KinematicTree<double>& tree() {
-  static const walkgen::KinematicTree<double> t = walkgen_test::humanoid_tree();
+  static const walkgen::KinematicTree<double> t = walkgen::humanoid_tree();
   return t;
 }
 
@@ -25,9 +26,9 @@ void report(benchmark::State& state, double simulated_per_iteration) {
 // NMPC + interpolation + IK + MuJoCo, per tick (0.4 s simulated).
 void BM_ClosedLoopTick(benchmark::State& state) {
   walkgen::MujocoRobot robot;
-  walkgen_test::HumanoidIk ik(tree());
+  walkgen::HumanoidIk ik(tree());
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
-  walkgen_test::SimLoop loop(settings, robot, ik);
+  walkgen::SimLoop loop(settings, robot, ik);
   if (loop.start().status != walkgen::LoopStatus::ok) {
     state.SkipWithError("start failed");
     return;
@@ -77,22 +78,22 @@ BENCHMARK(BM_PhysicsOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_ControllerOnly(benchmark::State& state) {
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   walkgen::WalkingMpc<double, 16> mpc(settings);
-  walkgen::WalkingInterpolator<double> interp(settings);
+  walkgen::WalkingInterpolator<double> interp(walkgen::interpolation_settings(settings));
   std::vector<walkgen::TrajectorySample<double>> samples(std::size_t(interp.samples_per_tick()));
-  walkgen_test::HumanoidIk ik(tree());
+  walkgen::HumanoidIk ik(tree());
   if (mpc.set_command({0.03, 0.0, 0.05}) != walkgen::CommandStatus::accepted ||
       mpc.solve().status != walkgen::MpcStatus::solved) {
     state.SkipWithError("the first tick failed");
     return;
   }
-  interp.interpolate(mpc, samples.data());
-  walkgen_test::start_walk(ik, samples.front());
+  interp.interpolate(mpc.tick_plan(), samples.data());
+  walkgen::start_walk(ik, samples.front());
   for (auto _ : state) {
     if (mpc.solve().status != walkgen::MpcStatus::solved) {
       state.SkipWithError("QP failed");
       break;
     }
-    interp.interpolate(mpc, samples.data());
+    interp.interpolate(mpc.tick_plan(), samples.data());
     for (const auto& s : samples) benchmark::DoNotOptimize(ik.solve(walkgen::ik_target(s)));
     mpc.advance();
   }

@@ -7,7 +7,8 @@
 #   walkgen_add_compile_fail_test(NAME <name> SOURCE <file> REGEX <regex>)
 #
 # Relative SOURCES are relative to the calling CMakeLists.txt. Every target gets our warning flags
-# (never the INTERFACE library itself) and can include "support/..." from tests/.
+# (never the INTERFACE library itself). Tests can include "support/..." (test helpers) from tests/;
+# examples and benchmarks cannot: what they share with tests is in the library (include/walkgen/).
 include_guard(GLOBAL)
 
 set(_walkgen_helpers_dir "${CMAKE_CURRENT_LIST_DIR}")
@@ -99,7 +100,6 @@ function(walkgen_add_benchmark)
   add_executable(${_arg_NAME} ${_arg_SOURCES})
   target_link_libraries(${_arg_NAME}
     PRIVATE walkgen::walkgen benchmark::benchmark benchmark::benchmark_main ${_arg_LIBS})
-  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
   target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   walkgen_target_warnings(${_arg_NAME})
   if(WALKGEN_BENCHMARK_NATIVE AND NOT MSVC)
@@ -136,9 +136,8 @@ function(walkgen_add_example)
   endif()
   add_executable(${_arg_NAME} ${_arg_SOURCES})
   target_link_libraries(${_arg_NAME} PRIVATE walkgen::walkgen CLI11::CLI11 ${_arg_LIBS})
-  # "support/..." from tests/, "common/cli.hpp" (the command-line conventions) from examples/.
-  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests"
-                                                  "${PROJECT_SOURCE_DIR}/examples")
+  # "common/cli.hpp" (the command-line conventions) from examples/.
+  target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/examples")
   target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   walkgen_target_warnings(${_arg_NAME})
   set_property(GLOBAL APPEND PROPERTY WALKGEN_EXAMPLE_TARGETS ${_arg_NAME})

@@ -47,7 +47,7 @@
 
 #include "common/cli.hpp"
 #include "common/navigation_cli.hpp"
-#include "support/navigation_episode.hpp"
+#include "walkgen/navigation/scripted_expert.hpp"
 #include "walkgen/torch/velocity_network.hpp"
 
 namespace {
@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
     int reached = 0;
     for (int l = 0; l < layouts; ++l) {
       const auto scene = walkgen::make_navigation_scene(task, seed + std::uint32_t(l));
-      walkgen_test::ScriptedExpert scripted(scene, max_command);
+      walkgen::ScriptedExpert scripted(scene, max_command);
       std::unique_ptr<walkgen::DemonstrationRecorder> recorder;
       if (!dagger.empty() && network) {
         try {  // refuses an episode the folder already holds
@@ -157,9 +157,9 @@ int main(int argc, char** argv) {
       double inference_s = 0.0;
       long frames = 0;
       if (network) network->reset();
-      const auto r = walkgen_test::run_navigation_episode(
+      const auto r = walkgen::run_navigation_episode(
           scene,
-          [&](const walkgen_test::NavigationObservation& o) -> Eigen::Vector3d {
+          [&](const walkgen::NavigationObservation& o) -> Eigen::Vector3d {
             Eigen::Vector3d c;
             // The expert follows the episode from its start, also before it takes over.
             if (!network || handover >= 0.0) c = scripted(o);
@@ -178,13 +178,11 @@ int main(int argc, char** argv) {
             return c;
           },
           [&] {
-            walkgen_test::NavigationOptions options;
+            walkgen::NavigationOptions options;
             options.time_limit = time_limit;
             if (recorder) {
               options.recorder = recorder.get();
-              options.label = [&](const walkgen_test::NavigationObservation& o) {
-                return scripted(o);
-              };
+              options.label = [&](const walkgen::NavigationObservation& o) { return scripted(o); };
             }
             return options;
           }());

@@ -2,10 +2,11 @@
 // walk: CoM, ZMP and footsteps, plus the solve time of each tick.
 //
 // Each tick builds the linearised NMPC QP (68 variables, 106 rows: LIPM preview eq. 2.36–2.42,
-// ZMP-in-foot rows 2.68, footstep feasibility 2.71, relative yaw limits 2.75–2.77; built in
-// tests/support/walking_qp.hpp), solves it warm-started from the previous active set, applies the
-// first jerks and advances. The command changes every few seconds (Seq::demo_command): straight,
-// curved, sideways, turn on the spot. The full NMPC (walkgen::WalkingMpc) is walking_scenarios'.
+// ZMP-in-foot rows 2.68, footstep feasibility 2.71, relative yaw limits 2.75–2.77; built by
+// walkgen::WalkingQpSequence, walkgen/scenarios/walking_qp_sequence.hpp), solves it warm-started
+// from the previous active set, applies the first jerks and advances. The command changes every few
+// seconds (Seq::demo_command): straight, curved, sideways, turn on the spot. The full NMPC
+// (walkgen::WalkingMpc) is walking_scenarios'.
 //
 //   qp_walking_sequence [--ticks N] [--csv FILE] [--png FILE] [--no-plot] [--quiet]
 //
@@ -29,12 +30,12 @@
 #include <vector>
 
 #include "common/cli.hpp"
-#include "support/walking_qp.hpp"
 #include "walkgen/qp/dense_qp.hpp"
+#include "walkgen/scenarios/walking_qp_sequence.hpp"
 
 namespace {
 
-using Seq = walkgen_test::WalkingQpSequence;
+using Seq = walkgen::WalkingQpSequence;
 
 struct Options {
   int ticks = 240;
@@ -88,7 +89,7 @@ int main(int argc, char** argv) {
   }
   for (int tick = 0; tick < opt.ticks; ++tick) {
     const Seq::Command cmd = Seq::demo_command(tick);
-    const walkgen_test::WalkingQp w = seq.build(cmd);
+    const walkgen::WalkingQp w = seq.build(cmd);
     // init() factorises H and validates the data; solve() starts from the last active set.
     const auto start = std::chrono::steady_clock::now();
     qp.init(w.H, w.g, w.A, w.lb, w.ub);

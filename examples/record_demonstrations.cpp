@@ -32,7 +32,7 @@
 
 #include "common/cli.hpp"
 #include "common/navigation_cli.hpp"
-#include "support/navigation_episode.hpp"
+#include "walkgen/navigation/scripted_expert.hpp"
 
 int main(int argc, char** argv) {
   std::string out;
@@ -72,19 +72,19 @@ int main(int argc, char** argv) {
       return 2;
     }
     walkgen::DemonstrationRecorder& recorder = *recorder_slot;
-    walkgen_test::ScriptedExpert expert(scene, walkgen::heicub_settings().max_command);
-    walkgen_test::NavigationOptions options;
+    walkgen::ScriptedExpert expert(scene, walkgen::heicub_settings().max_command);
+    walkgen::NavigationOptions options;
     options.recorder = &recorder;
     const bool perturbed = noise > 0.0 && e % 2 == 1;
     std::mt19937 rng(scene.seed);
     std::normal_distribution<double> turn(0.0, noise);
     double offset = 0.0, offset_until = -1.0;
     if (perturbed) {
-      options.label = [&](const walkgen_test::NavigationObservation& o) { return expert(o); };
+      options.label = [&](const walkgen::NavigationObservation& o) { return expert(o); };
     }
-    const auto r = walkgen_test::run_navigation_episode(
+    const auto r = walkgen::run_navigation_episode(
         scene,
-        [&](const walkgen_test::NavigationObservation& o) -> Eigen::Vector3d {
+        [&](const walkgen::NavigationObservation& o) -> Eigen::Vector3d {
           Eigen::Vector3d c = expert(o);
           if (perturbed) {
             if (o.time >= offset_until) {

@@ -46,10 +46,10 @@
 
 #include "common/cli.hpp"
 #include "common/navigation_cli.hpp"
-#include "support/simulated_tasks.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
+#include "walkgen/simulation/humanoid_loop.hpp"
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS  // examples/CMakeLists.txt: teleop links walkgen::opencv
-#include "support/navigation_episode.hpp"
+#include "walkgen/navigation/navigation_episode.hpp"
 #endif
 
 namespace {
@@ -232,7 +232,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  const walkgen::KinematicTree<double> tree = walkgen_test::humanoid_tree();
+  const walkgen::KinematicTree<double> tree = walkgen::humanoid_tree();
   walkgen::MujocoRobotSettings robot_settings;
   walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   if (scene) {
@@ -240,8 +240,8 @@ int main(int argc, char** argv) {
     settings.obstacles = scene->obstacles_at(0.0, kRoomObstacleMargin);  // chairs and person
   }
   walkgen::MujocoRobot robot(robot_settings);
-  walkgen_test::HumanoidIk ik(tree);
-  walkgen_test::SimLoop loop(settings, robot, ik);
+  walkgen::HumanoidIk ik(tree);
+  walkgen::SimLoop loop(settings, robot, ik);
   std::ofstream csv(record);
   if (!csv) {
     std::fprintf(stderr, "teleop: cannot write '%s'\n", record.c_str());
@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "teleop: cannot render the chest cameras: %s\n", first.message.c_str());
       return 1;
     }
-    stereo.emplace(walkgen_test::make_stereo_depth(first));
+    stereo.emplace(walkgen::make_stereo_depth(first));
   }
 #endif
   const Eigen::Vector3d limit = 0.95 * settings.max_command;
@@ -281,7 +281,7 @@ int main(int argc, char** argv) {
   std::string key_this_tick, stop_message;
   long frames = 0;
   bool reached = false;
-  double target_distance = scene ? (walkgen_test::true_com(robot) - scene->target).norm() : 0.0;
+  double target_distance = scene ? (walkgen::true_com(robot) - scene->target).norm() : 0.0;
   while (!quit && g_stop == 0 && robot.output().time - t0 < max_time) {
     // Keys until the wall clock has caught up with the simulation.
     const double sim = robot.output().time - t0;
@@ -367,9 +367,9 @@ int main(int argc, char** argv) {
     ++rows;
     key_this_tick.clear();
     const auto& st = loop.mpc().state();
-    const walkgen::PlanarPose pose = walkgen_test::walking_pose(st);
+    const walkgen::PlanarPose pose = walkgen::walking_pose(st);
     if (scene) {
-      target_distance = (walkgen_test::true_com(robot) - scene->target).norm();
+      target_distance = (walkgen::true_com(robot) - scene->target).norm();
       reached = target_distance <= kRoomReachDistance;
     }
     // The screen: home, clear, then the panel.
@@ -410,7 +410,7 @@ int main(int argc, char** argv) {
   }
   csv.flush();
   const auto& st = loop.mpc().state();
-  const walkgen::PlanarPose pose = walkgen_test::walking_pose(st);
+  const walkgen::PlanarPose pose = walkgen::walking_pose(st);
   const double walked = std::hypot(pose.x, pose.y);
   std::printf("\r\nteleop: %s after %.1f s simulated; %.2f m from the start; %ld ticks in %s\r\n",
               walkgen::to_string(status), robot.output().time - t0, walked, rows, record.c_str());

@@ -9,13 +9,17 @@
 //                 base_z [m])
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option with
 // its default and exits 0; an unknown option or a bad value exits 2 with one line on stderr.
-// Exits 1 when a solve did not converge or the CSV could not be written.
+// Exits 1 when the walk failed (a rejected command or an NMPC that did not solve), an IK solve
+// did not converge or the CSV could not be written.
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "common/cli.hpp"
-#include "support/humanoid_ik.hpp"
+#include "walkgen/control/pattern_targets.hpp"
+#include "walkgen/humanoid/humanoid_ik.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 int main(int argc, char** argv) {
   int ticks = 32;  // two gait cycles of 6.4 s
@@ -35,11 +39,16 @@ int main(int argc, char** argv) {
   const Eigen::Vector3d command(0.02, 0.0, 0.05);  // within heicub_settings().max_command
   std::printf("walking_joints: NMPC walk of %d ticks, command (%.3f, %.3f, %.3f)\n", ticks,
               command.x(), command.y(), command.z());
-  const auto samples = walkgen_test::heicub_walk(command, ticks);
+  const walkgen::PatternWalk walk = walkgen::heicub_walk(command, ticks);
+  if (!walk.ok()) {
+    std::fprintf(stderr, "walking_joints: %s\n", walk.message.c_str());
+    return 1;
+  }
+  const std::vector<walkgen::TrajectorySample<double>>& samples = walk.samples;
 
-  const walkgen::KinematicTree<double> tree = walkgen_test::humanoid_tree();
-  walkgen_test::HumanoidIk ik(tree);
-  walkgen_test::start_walk(ik, samples.front());
+  const walkgen::KinematicTree<double> tree = walkgen::humanoid_tree();
+  walkgen::HumanoidIk ik(tree);
+  walkgen::start_walk(ik, samples.front());
 
   std::ofstream csv(out);
   csv << "time";

@@ -1,7 +1,7 @@
 // Walks the scenarios of thesis §9.1 (figures 9.1–9.3) with the HRP-2 preset
 // (walkgen::hrp2_settings): straight, sideways, curved, turn on the spot, a changing command
 // sequence and obstacle avoidance, each for 200 ticks of WalkingMpc<double, 16>
-// (tests/support/walking_scenarios.hpp), and plots each walk from above.
+// (walkgen/scenarios/walking_scenarios.hpp), and plots each walk from above.
 //
 //   walking_scenarios [SCENARIO] [--out DIR] [--no-plot]
 //
@@ -26,9 +26,9 @@
 #include <vector>
 
 #include "common/cli.hpp"
-#include "support/walking_scenarios.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/mpc/settings.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 namespace {
 
@@ -45,9 +45,9 @@ bool open(const std::string& path, std::ofstream* os) {
 }
 
 /// Runs, writes and plots one scenario; false on a failed QP, file or plot.
-bool walk(const walkgen_test::Scenario& sc, const Options& opt) {
+bool walk(const walkgen::Scenario& sc, const Options& opt) {
   const auto settings = walkgen::hrp2_settings<double>();
-  const walkgen_test::ScenarioRun run = walkgen_test::run_scenario<16>(sc, settings);
+  const walkgen::ScenarioRun run = walkgen::run_scenario<16>(sc, settings);
 
   int failures = 0;
   double active_changes = 0.0;
@@ -128,7 +128,7 @@ bool walk(const walkgen_test::Scenario& sc, const Options& opt) {
 int main(int argc, char** argv) {
   Options opt;
   std::vector<std::string> names;
-  for (const auto& sc : walkgen_test::walking_scenarios()) names.push_back(sc.name);
+  for (const auto& sc : walkgen::walking_scenarios()) names.push_back(sc.name);
   names.push_back("all");
 
   CLI::App app{"Walks the HRP-2 scenarios of thesis §9.1 (figures 9.1-9.3): CSV files and plots",
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
   std::error_code ec;
   std::filesystem::create_directories(opt.out, ec);  // a failure shows when a file is opened
   bool ok = true;
-  for (const auto& sc : walkgen_test::walking_scenarios()) {
+  for (const auto& sc : walkgen::walking_scenarios()) {
     if (opt.scenario == "all" || opt.scenario == sc.name) ok = walk(sc, opt) && ok;
   }
   std::printf("output files are in %s\n", opt.out.c_str());

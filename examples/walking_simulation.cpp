@@ -48,7 +48,7 @@
 #include <vector>
 
 #include "common/cli.hpp"
-#include "support/simulated_tasks.hpp"
+#include "walkgen/simulation/simulated_tasks.hpp"
 #ifdef WALKGEN_SIMULATION_OPENCV  // examples/CMakeLists.txt: with walkgen::opencv
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -255,7 +255,7 @@ class VideoPipe {
   int frames_ = 0;
 };
 
-void write_rows(const std::string& path, const walkgen_test::TaskResult& r) {
+void write_rows(const std::string& path, const walkgen::TaskResult& r) {
   std::ofstream csv(path);
   csv << "time,v_x,v_y,omega,com_plan_x,com_plan_y,zmp_plan_x,zmp_plan_y,zmp_measured_x,"
          "zmp_measured_y,zmp_true_x,zmp_true_y,com_true_x,com_true_y,support_margin,"
@@ -338,8 +338,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   // The robot's offscreen buffer bounds the frame size (MujocoRobotSettings::view_width and
-  // view_height, which tests/support/simulated_tasks.hpp leaves at their defaults).
-  const walkgen::MujocoRobotSettings view = walkgen_test::task_robot_settings({});
+  // view_height, which walkgen::task_robot_settings sets for every task).
+  const walkgen::MujocoRobotSettings view = walkgen::task_robot_settings({});
   if (video && (film.width > view.view_width || film.height > view.view_height)) {
     const double shrink =
         std::min(double(view.view_width) / film.width, double(view.view_height) / film.height);
@@ -347,7 +347,7 @@ int main(int argc, char** argv) {
     std::printf(
         "walking_simulation: the robot renders at most %d x %d px "
         "(MujocoRobotSettings::view_width/view_height of "
-        "walkgen_test::task_robot_settings): filming %d x %d px instead of %d x %d\n",
+        "walkgen::task_robot_settings): filming %d x %d px instead of %d x %d\n",
         view.view_width, view.view_height, w, h, film.width, film.height);
     film.width = w;
     film.height = h;
@@ -363,7 +363,7 @@ int main(int argc, char** argv) {
              "zmp_inside_fraction,min_base_height,min_obstacle_distance,qp_failures,ik_failures\n";
   int failures = 0;
   bool files_ok = true;
-  for (const auto& task : walkgen_test::section_9_2_tasks(scale)) {
+  for (const auto& task : walkgen::section_9_2_tasks(scale)) {
     if (!names.empty() && std::find(names.begin(), names.end(), task.name) == names.end()) {
       continue;
     }
@@ -377,10 +377,10 @@ int main(int argc, char** argv) {
     double render_seconds = 0.0, pipe_seconds = 0.0;  // wall time of the frames [s]
     double next_report = 10.0;
     walkgen::CameraImage image;
-    const auto result = walkgen_test::run_task(
+    const auto result = walkgen::run_task(
         task, 2.0,
-        [&](walkgen::MujocoRobot& robot, const walkgen_test::SimLoop& loop,
-            const walkgen_test::TaskResult& r) {
+        [&](walkgen::MujocoRobot& robot, const walkgen::SimLoop& loop,
+            const walkgen::TaskResult& r) {
           const double t = r.rows.empty() ? 0.0 : r.rows.back().time;
           if (t >= next_report) {  // progress every 10 s simulated
             const auto& st = loop.mpc().state();
@@ -393,7 +393,7 @@ int main(int argc, char** argv) {
           if (!filming) return;
           using Clock = std::chrono::steady_clock;
           const auto start = Clock::now();
-          const Eigen::Vector2d c = walkgen_test::true_com(robot);
+          const Eigen::Vector2d c = walkgen::true_com(robot);
           if (!robot.render_view(Eigen::Vector3d(c.x(), c.y(), 0.3), kCameraDistance,
                                  kCameraAzimuth, kCameraElevation, film.width, film.height,
                                  image)) {

@@ -8,8 +8,8 @@
 //
 //   walking_tuning            (no options besides --help and --version)
 //
-// Each run is 200 ticks of WalkingMpc (tests/support/walking_scenarios.hpp); the velocity is
-// walkgen_test::mean_velocity over ticks 88–200, as in tests/mpc/test_walking_mpc.cpp. --help
+// Each run is 200 ticks of WalkingMpc (walkgen/scenarios/walking_scenarios.hpp); the velocity is
+// walkgen::mean_velocity over ticks 88–200, as in tests/mpc/test_walking_mpc.cpp. --help
 // prints the usage; any other argument exits 2 with one line on stderr.
 
 #include <cmath>
@@ -19,16 +19,16 @@
 #include <vector>
 
 #include "common/cli.hpp"
-#include "support/walking_scenarios.hpp"
 #include "walkgen/mpc/settings.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 namespace {
 
-using walkgen_test::ScenarioRun;
+using walkgen::ScenarioRun;
 using Settings = walkgen::WalkingSettings<double>;
 
 Eigen::Vector3d velocity(const ScenarioRun& run, const Settings& s) {
-  return walkgen_test::mean_velocity(run, 88, 6, 2 * s.samples_per_step(), s.t);
+  return walkgen::mean_velocity(run, 88, 6, 2 * s.samples_per_step(), s.t);
 }
 
 int failed_ticks(const ScenarioRun& run) {
@@ -58,7 +58,7 @@ void step_velocity_table() {
       [](const Settings& s) {
         std::printf("| %g |", s.step_velocity_weight);
         for (const char* name : {"straight", "sideways", "curved", "turn"}) {
-          const ScenarioRun run = walkgen_test::run_scenario(walkgen_test::scenario(name), s);
+          const ScenarioRun run = walkgen::run_scenario(walkgen::scenario(name), s);
           const Eigen::Vector3d v = velocity(run, s);
           std::printf(" %.4f, %.4f, %.4f%s |", v[0], v[1], v[2],
                       failed_ticks(run) ? " (failed)" : "");
@@ -73,8 +73,8 @@ void horizon_table() {
       {8, 12, 16, 24, 32}, [](Settings& s, double n) { s.n = int(n); },
       [](const Settings& s) {
         std::printf("| %d (%.1f s) |", s.n, s.n * s.t);
-        for (const auto& sc : walkgen_test::walking_scenarios()) {
-          const ScenarioRun run = walkgen_test::run_scenario(sc, s);
+        for (const auto& sc : walkgen::walking_scenarios()) {
+          const ScenarioRun run = walkgen::run_scenario(sc, s);
           int corrections = 0;
           for (const auto& r : run.results) corrections += r.sqp_iterations - s.sqp_iterations;
           std::printf(" %d failed, %d corr.", failed_ticks(run), corrections);
@@ -108,7 +108,7 @@ void beta_table() {
       "QP active-set changes per tick |\n|---|---|---|---|\n",
       {1e-6, 1e-3, 1e-1, 1.0}, [](Settings& s, double beta) { s.beta = beta; },
       [](const Settings& s) {
-        const ScenarioRun run = walkgen_test::run_scenario(walkgen_test::scenario("straight"), s);
+        const ScenarioRun run = walkgen::run_scenario(walkgen::scenario("straight"), s);
         double changes = 0;
         for (const auto& r : run.results) changes += r.qp_iterations;
         std::printf("| %g | %.4f%s | %.1f | %.1f |", s.beta, velocity(run, s)[0],

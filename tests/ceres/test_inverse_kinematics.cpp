@@ -8,19 +8,23 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
 
-#include "support/humanoid_ik.hpp"
+#include "support/derivatives.hpp"
 #include "support/kinematics.hpp"
+#include "walkgen/control/pattern_targets.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/humanoid/humanoid_ik.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 namespace {
 
+using walkgen::HumanoidIk;
 using walkgen::IkStatus;
 using walkgen::IkTarget;
-using walkgen_test::HumanoidIk;
 
 const walkgen::KinematicTree<double>& tree() {
-  static const walkgen::KinematicTree<double> t = walkgen_test::humanoid_tree();
+  static const walkgen::KinematicTree<double> t = walkgen::humanoid_tree();
   return t;
 }
 
@@ -72,7 +76,7 @@ IkTarget random_reachable_target(std::mt19937& rng) {
       const Eigen::Matrix3d& Rs = ws.rotation_W(sole);
       EXPECT_LT(std::hypot(Rs(0, 2), Rs(1, 2)), 1e-12);  // flat
       (s == "l_" ? target.left_foot : target.right_foot) =
-          walkgen::SoleTarget{ws.position_W(sole), std::atan2(Rs(1, 0), Rs(0, 0))};
+          walkgen::SoleTarget{ws.position_W(sole), walkgen::yaw_of(Rs)};
     }
     target.base_rotation_W = R;
     target.torso_rotation_W = ws.rotation_W(t.link_index("chest"));
@@ -88,9 +92,8 @@ TEST(CeresInverseKinematics, RoundTripOfRandomReachableTargets) {
   double worst = 0.0;
   for (int i = 0; i < trials; ++i) {
     const IkTarget target = random_reachable_target(rng);
-    walkgen_test::start_standing(
-        ik, target.left_foot.position_W,
-        std::atan2(target.base_rotation_W(1, 0), target.base_rotation_W(0, 0)));
+    walkgen::start_standing(ik, target.left_foot.position_W,
+                            walkgen::yaw_of(target.base_rotation_W));
     const Eigen::VectorXd before = ik.q();
     const walkgen::IkResult r = ik.solve(target);
     iterations += r.iterations;
@@ -123,11 +126,13 @@ TEST(CeresInverseKinematics, RoundTripOfRandomReachableTargets) {
 /// IK at every command sample of a Heicub walk (heicub_settings() unchanged: com_z = 0.45 m) of
 /// scenario `name`: converges every time, smooth joint motion.
 void walk_and_check(const std::string& name, int ticks, int phase = 8) {
-  const auto samples = walkgen_test::heicub_walk(
-      [&](int k) { return walkgen_test::heicub_scenario_command(name, k, phase); }, ticks,
-      walkgen_test::heicub_obstacle(name));
+  const walkgen::PatternWalk walk =
+      walkgen::heicub_walk([&](int k) { return walkgen::heicub_scenario_command(name, k, phase); },
+                           ticks, walkgen::heicub_obstacle(name));
+  ASSERT_TRUE(walk.ok()) << walk.message;
+  const auto& samples = walk.samples;
   HumanoidIk ik(tree());
-  walkgen_test::start_walk(ik, samples.front());
+  walkgen::start_walk(ik, samples.front());
   const double dt = walkgen::heicub_settings().command_period;
   Eigen::VectorXd previous_q, previous_v;
   double max_speed = 0.0, max_jump = 0.0, worst = 0.0;
@@ -164,7 +169,7 @@ void walk_and_check(const std::string& name, int ticks, int phase = 8) {
   EXPECT_LT(max_jump, 0.1);
 }
 
-// The pattern generator's scenarios at Heicub's speeds (walkgen_test::heicub_scenario_command):
+// The pattern generator's scenarios at Heicub's speeds (walkgen::heicub_scenario_command):
 // two gait cycles (32 ticks of 0.4 s, 1280 samples) each; the sequence changes its command every
 // step (8 ticks) for five steps.
 TEST(CeresInverseKinematics, HeicubWalkStraightHasSmoothJoints) { walk_and_check("straight", 32); }
@@ -179,14 +184,15 @@ TEST(CeresInverseKinematics, HeicubCommandSequenceHasSmoothJoints) {
   walk_and_check("sequence", 40, 8);
 }
 
-// Obstacle avoidance at Heicub's scale (walkgen_test::heicub_obstacle): four gait cycles, the
+// Obstacle avoidance at Heicub's scale (walkgen::heicub_obstacle): four gait cycles, the
 // footsteps keep radius + margin from the obstacle and the walk ends past it.
 TEST(CeresInverseKinematics, HeicubObstacleAvoidanceHasSmoothJoints) {
   walk_and_check("obstacle", 64);
-  const auto obstacle = walkgen_test::heicub_obstacle("obstacle").front();
-  const auto samples = walkgen_test::heicub_walk(
-      [](int k) { return walkgen_test::heicub_scenario_command("obstacle", k, 8); }, 64,
-      {obstacle});
+  const auto obstacle = walkgen::heicub_obstacle("obstacle").front();
+  const walkgen::PatternWalk walk = walkgen::heicub_walk(
+      [](int k) { return walkgen::heicub_scenario_command("obstacle", k, 8); }, 64, {obstacle});
+  ASSERT_TRUE(walk.ok()) << walk.message;
+  const auto& samples = walk.samples;
   for (const auto& o : samples) {
     if (!o.double_support) continue;  // both feet on the ground: where footsteps landed
     for (const auto* foot : {&o.left, &o.right}) {
@@ -198,22 +204,27 @@ TEST(CeresInverseKinematics, HeicubObstacleAvoidanceHasSmoothJoints) {
   EXPECT_GT(samples.back().com_x[0], obstacle.x + obstacle.radius + obstacle.margin);
 }
 
-/// The analytic residual Jacobian equals Ceres' automatic one over the FK in Jets, with
-/// non-zero body points, base rotation vectors from 1e-5 to 0.8 rad, and both joint counts.
+/// The analytic residual Jacobian equals Ceres' automatic one over the FK in Jets (the solver's
+/// cost functions, residual_and_jacobian()) and the checker's Jets through IkResidual::residual()
+/// (8 derivatives per pass), with non-zero body points, base rotation vectors from 1e-5 to
+/// 0.8 rad, and both joint counts. tests/kinematics/test_ik_residual.cpp checks it against
+/// central differences.
 template <int NumJoints>
 void check_analytic_jacobian() {
-  walkgen::CeresIkSettings s;
-  s.com_body_point = Eigen::Vector3d(0.01, -0.02, 0.03);
-  s.lf_body_point = Eigen::Vector3d(0.05, 0.01, 0.0);
-  s.rf_body_point = Eigen::Vector3d(-0.03, -0.02, 0.01);
-  s.foot_orientation_weight = 2.0;
-  s.com_weight = 0.5;
+  auto s = walkgen_test::offset_ik_settings<walkgen::CeresIkSettings>();
   walkgen::CeresInverseKinematics<NumJoints> analytic(tree(), s);
   s.derivatives = walkgen::IkDerivatives::automatic;
   walkgen::CeresInverseKinematics<NumJoints> automatic(tree(), s);
+  using Jet = ceres::Jet<double, 8>;
+  const walkgen::IkResidual<NumJoints>& residual = analytic.residual();
+  const walkgen::KinematicTree<Jet> jet_tree = residual.tree().template cast<Jet>();
+  auto jet_ws = jet_tree.make_workspace();
+  walkgen_test::Blocks rows;
+  for (const char* name : walkgen::IkResidual<>::kRowBlocks) rows.push_back({name, 3});
+  const walkgen_test::Blocks cols = walkgen_test::velocity_blocks(tree());
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  double worst = 0.0;
+  walkgen_test::JacobianCheck worst;
   for (int i = 0; i < 20; ++i) {
     const IkTarget target = random_reachable_target(rng);
     const Eigen::Matrix3d R =
@@ -232,15 +243,24 @@ void check_analytic_jacobian() {
     ASSERT_EQ(Ja.rows(), 21);
     ASSERT_EQ(Ja.cols(), 21);
     EXPECT_LE((ra - rb).cwiseAbs().maxCoeff(), 1e-12);
-    worst = std::max(worst, (Ja - Jb).cwiseAbs().maxCoeff());
+    const std::string what = "analytic IK residual Jacobian (sample " + std::to_string(i) + ")";
+    worst.merge(walkgen_test::compare_jacobians(what, Ja, Jb, {1e-9}, rows, cols,
+                                                "Ceres' AutoDiffCostFunction"));
+    const Eigen::Matrix3d start = analytic.base_rotation_W();
+    auto f = [&](const Jet* xx, Jet* r) {
+      residual.residual(target, start, xx, r, jet_tree, jet_ws);
+    };
+    worst.merge(walkgen_test::compare_jacobians(what, Ja, walkgen_test::jet_jacobian<Jet>(f, x, 21),
+                                                {1e-9}, rows, cols,
+                                                "ceres::Jet<double, 8> through IkResidual"));
   }
   std::printf("analytic vs Jet residual Jacobian (joints %d): worst difference %.2e\n", NumJoints,
-              worst);
-  EXPECT_LE(worst, 1e-9);
+              worst.max_error);
+  EXPECT_TRUE(worst.passed()) << worst.message();
 }
 
 TEST(CeresInverseKinematics, AnalyticJacobianMatchesJets) {
-  check_analytic_jacobian<walkgen_test::kHumanoidJoints>();
+  check_analytic_jacobian<walkgen::kHumanoidJoints>();
   check_analytic_jacobian<Eigen::Dynamic>();
 }
 
@@ -255,9 +275,9 @@ TEST(CeresInverseKinematics, DynamicJointCountAndAutomaticDerivativesMatchFixed)
     std::mt19937 rng(7);
     for (int i = 0; i < 5; ++i) {
       const IkTarget target = random_reachable_target(rng);
-      walkgen_test::start_standing(dynamic, target.left_foot.position_W);
-      walkgen_test::start_standing(fixed_same, target.left_foot.position_W);
-      walkgen_test::start_standing(fixed, target.left_foot.position_W);
+      walkgen::start_standing(dynamic, target.left_foot.position_W);
+      walkgen::start_standing(fixed_same, target.left_foot.position_W);
+      walkgen::start_standing(fixed, target.left_foot.position_W);
       const auto a = dynamic.solve(target), b = fixed.solve(target), c = fixed_same.solve(target);
       EXPECT_EQ(a.status, b.status);
       EXPECT_EQ(c.status, b.status);
@@ -272,7 +292,7 @@ TEST(CeresInverseKinematics, DynamicJointCountAndAutomaticDerivativesMatchFixed)
 
 TEST(CeresInverseKinematics, NonFiniteTargetKeepsTheSolution) {
   HumanoidIk ik(tree());
-  walkgen_test::start_standing(ik, Eigen::Vector3d(0, 0.07, 0));
+  walkgen::start_standing(ik, Eigen::Vector3d(0, 0.07, 0));
   const Eigen::VectorXd q = ik.q();
   IkTarget target;
   target.com_W = Eigen::Vector3d(0.0, 0.0, std::nan(""));
@@ -288,7 +308,7 @@ TEST(CeresInverseKinematics, UnreachableTargetKeepsTheSolution) {
   s.n_init = 2;
   s.num_steps = 100;
   HumanoidIk ik(tree(), s);
-  walkgen_test::start_standing(ik, Eigen::Vector3d(0, 0.07, 0));
+  walkgen::start_standing(ik, Eigen::Vector3d(0, 0.07, 0));
   const Eigen::VectorXd q = ik.q();
   IkTarget target;
   target.com_W = Eigen::Vector3d(0.0, 0.0, 0.45);

@@ -7,6 +7,9 @@
 
 #include <Eigen/Dense>
 #include <random>
+#include <string>
+
+#include "support/derivatives.hpp"
 
 namespace {
 
@@ -25,14 +28,26 @@ class PolynomialTest : public ::testing::Test {
 template <int Degree>
 void expect_consistent_derivatives(const walkgen::Polynomial<double, Degree>& p) {
   const double h = 1e-6;
+  auto position = [&](const Eigen::VectorXd& t) {
+    return Eigen::VectorXd::Constant(1, p.evaluate(t[0]).position);
+  };
+  auto velocity = [&](const Eigen::VectorXd& t) {
+    return Eigen::VectorXd::Constant(1, p.evaluate(t[0]).velocity);
+  };
+  walkgen_test::JacobianCheck v, a;
   for (int k = 1; k < 20; ++k) {
-    const double t = p.duration * k / 20.0;
-    const auto s = p.evaluate(t), lo = p.evaluate(t - h), hi = p.evaluate(t + h);
-    EXPECT_NEAR(s.velocity, (hi.position - lo.position) / (2 * h),
-                1e-6 * (1 + std::abs(s.velocity)));
-    EXPECT_NEAR(s.acceleration, (hi.velocity - lo.velocity) / (2 * h),
-                1e-5 * (1 + std::abs(s.acceleration)));
+    const Eigen::VectorXd t = Eigen::VectorXd::Constant(1, p.duration * k / 20.0);
+    const auto s = p.evaluate(t[0]);
+    const std::string at = " at t = " + std::to_string(t[0]) + " s";
+    v.merge(walkgen_test::compare_jacobians(
+        "velocity" + at, Eigen::MatrixXd::Constant(1, 1, s.velocity),
+        walkgen_test::central_differences(position, t, h), {1e-6, 1e-6}));
+    a.merge(walkgen_test::compare_jacobians(
+        "acceleration" + at, Eigen::MatrixXd::Constant(1, 1, s.acceleration),
+        walkgen_test::central_differences(velocity, t, h), {1e-5, 1e-5}));
   }
+  EXPECT_TRUE(v.passed()) << v.message();
+  EXPECT_TRUE(a.passed()) << a.message();
 }
 
 TEST_F(PolynomialTest, QuinticMeetsAllSixBoundaryConditions) {

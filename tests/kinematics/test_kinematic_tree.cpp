@@ -103,25 +103,26 @@ TEST(KinematicTree, LinksParentsFirstAndQInDescriptionOrder) {
 
 TEST(KinematicTree, JacobiansMatchCentralDifferencesOnRandomTrees) {
   std::mt19937 rng(42);
-  walkgen_test::JacobianFdErrors errors;
+  walkgen_test::TreeJacobianChecks checks;
   for (int trial = 0; trial < 20; ++trial) {
-    errors.add_random_configuration(Tree(random_tree(rng, 12)), rng, 0.2);
+    checks.add_random_configuration(Tree(random_tree(rng, 12)), rng, 0.2, {1e-8});
   }
-  EXPECT_LT(errors.frame, 1e-8);
-  EXPECT_LT(errors.com, 1e-8);
-  RecordProperty("max_frame_jacobian_fd_error", walkgen_test::scientific(errors.frame));
-  RecordProperty("max_com_jacobian_fd_error", walkgen_test::scientific(errors.com));
+  EXPECT_TRUE(checks.frame.passed()) << checks.frame.message();
+  EXPECT_TRUE(checks.com.passed()) << checks.com.message();
+  RecordProperty("max_frame_jacobian_fd_error", walkgen_test::scientific(checks.frame.max_error));
+  RecordProperty("max_com_jacobian_fd_error", walkgen_test::scientific(checks.com.max_error));
 }
 
 // Forward-mode automatic differentiation through the same templated FK (as ceres::Jet will):
-// d(point)/dq and d(CoM)/dq equal the analytic Jacobians' joint columns to rounding.
+// d(point)/dq of every link and d(CoM)/dq equal the analytic Jacobians' joint columns to
+// rounding.
 TEST(KinematicTree, JacobiansMatchAutomaticDifferentiation) {
   using Ad = Eigen::AutoDiffScalar<Eigen::VectorXd>;
   using AdTree = walkgen::KinematicTree<Ad>;
   std::mt19937 rng(3);
   const Tree tree(random_tree(rng, 10));
   const AdTree ad_tree = tree.cast<Ad>();
-  const int n = tree.num_joints();
+  const int n = tree.num_joints(), links = tree.num_links();
   const auto base = walkgen_test::random_base_pose(rng);
   const Eigen::VectorXd q = walkgen_test::random_configuration(tree, rng);
 
@@ -135,30 +136,40 @@ TEST(KinematicTree, JacobiansMatchAutomaticDifferentiation) {
   }
   auto ad_ws = ad_tree.make_workspace();
   ad_tree.forward_kinematics(p_ad, R_ad, q_ad, ad_ws);
-  auto ws = tree.make_workspace();
-  tree.forward_kinematics(base.position, base.rotation, q, ws);
-
-  Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, tree.num_velocities());
-  double error = 0.0;
-  for (int link = 0; link < tree.num_links(); ++link) {
-    tree.frame_jacobian(ws, link, J);
+  // Rows: every link's origin, then the CoM; columns: the joints.
+  Eigen::MatrixXd J_ad(3 * links + 3, n);
+  for (int link = 0; link <= links; ++link) {
+    const AdTree::Vector3 x = link < links ? ad_ws.position_W(link) : ad_tree.center_of_mass(ad_ws);
     for (int r = 0; r < 3; ++r) {
-      const Ad& x = ad_ws.position_W(link)[r];
-      EXPECT_NEAR(x.value(), ws.position_W(link)[r], 1e-15);
-      const Eigen::VectorXd d =
-          x.derivatives().size() == n ? x.derivatives() : Eigen::VectorXd::Zero(n);
-      error = std::max(error, (J.row(r).tail(n).transpose() - d).cwiseAbs().maxCoeff());
+      const bool constant = x[r].derivatives().size() != n;  // the root's origin
+      J_ad.row(3 * link + r) = constant ? Eigen::VectorXd::Zero(n) : x[r].derivatives();
     }
   }
-  const AdTree::Vector3 c_ad = ad_tree.center_of_mass(ad_ws);
+
+  auto ws = tree.make_workspace();
+  tree.forward_kinematics(base.position, base.rotation, q, ws);
+  Eigen::MatrixXd J(3 * links + 3, n);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J_frame(6, tree.num_velocities());
+  walkgen_test::Blocks rows;
+  for (int link = 0; link < links; ++link) {
+    tree.frame_jacobian(ws, link, J_frame);
+    J.middleRows(3 * link, 3) = J_frame.topRows(3).rightCols(n);
+    rows.push_back({"origin of link '" + tree.link(link).name + "'", 3});
+    for (int r = 0; r < 3; ++r) {
+      EXPECT_NEAR(ad_ws.position_W(link)[r].value(), ws.position_W(link)[r], 1e-15);
+    }
+  }
   Eigen::Matrix<double, 3, Eigen::Dynamic> Jc(3, tree.num_velocities());
   tree.center_of_mass_jacobian(ws, Jc);
-  for (int r = 0; r < 3; ++r) {
-    error = std::max(error,
-                     (Jc.row(r).tail(n).transpose() - c_ad[r].derivatives()).cwiseAbs().maxCoeff());
-  }
-  EXPECT_LT(error, 1e-12);
-  RecordProperty("max_autodiff_error", walkgen_test::scientific(error));
+  J.bottomRows(3) = Jc.rightCols(n);
+  rows.push_back({"CoM", 3});
+  walkgen_test::Blocks joints;
+  for (const auto& name : tree.joint_names()) joints.push_back({"joint " + name, 1});
+  const auto check = walkgen_test::compare_jacobians("joint columns of the frame and CoM Jacobians",
+                                                     J, J_ad, {1e-12}, rows, joints,
+                                                     "Eigen::AutoDiffScalar through the FK");
+  EXPECT_TRUE(check.passed()) << check.message();
+  RecordProperty("max_autodiff_error", walkgen_test::scientific(check.max_error));
 }
 
 // --- Bad descriptions ----------------------------------------------------------------------------

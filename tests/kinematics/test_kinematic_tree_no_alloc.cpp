@@ -1,13 +1,16 @@
 // Proves that forward kinematics, the centre of mass and both Jacobians never touch the heap
 // after the tree and its workspace are made (docs/design.md convention 6), including with an
-// expression for q and a Jacobian that is a block of a larger matrix.
+// expression for q and a Jacobian that is a block of a larger matrix; and so do the IK
+// residual, its Jacobian and its errors (kinematics/ik_residual.hpp).
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "support/count_allocations.hpp"
 #include "support/kinematics.hpp"
+#include "walkgen/kinematics/ik_residual.hpp"
 
 namespace {
 
@@ -37,6 +40,34 @@ TEST(KinematicTreeNoAlloc, ForwardKinematicsComAndJacobians) {
   EXPECT_TRUE(com.allFinite());
   tree.frame_jacobian(ws, last, J);
   EXPECT_EQ(Eigen::MatrixXd(stacked.topRows<6>()), Eigen::MatrixXd(J));
+}
+
+TEST(KinematicTreeNoAlloc, IkResidualJacobianAndErrors) {
+  std::mt19937 rng(12);
+  const walkgen_test::Tree tree(walkgen_test::random_tree(rng, 25));
+  walkgen::IkResidualSettings s;  // any three links of the random tree
+  s.left_foot_link = "link7";
+  s.right_foot_link = "link12";
+  s.torso_link = "link3";
+  s.lf_body_point = Eigen::Vector3d(0.05, 0.0, 0.0);
+  const walkgen::IkResidual<> residual(tree, s);
+  auto ws = residual.make_workspace();
+  const auto base = walkgen_test::random_base_pose(rng);
+  Eigen::VectorXd x(residual.num_parameters());
+  x << base.position, 0.1, -0.2, 0.3, walkgen_test::random_configuration(tree, rng);
+  walkgen::IkTarget target;
+  target.left_foot.yaw = 0.4;
+  walkgen::IkResidual<>::Residual r;
+  walkgen::IkResidual<>::Jacobian J(21, x.size());
+  double error = 0.0;
+  const long news = count_allocations([&] {
+    for (int k = 0; k < 10; ++k) {
+      residual.evaluate(target, base.rotation, x, r, J, ws);
+      error += residual.errors(target, base.rotation, x.data(), ws).com_error;
+    }
+  });
+  EXPECT_EQ(news, 0);
+  EXPECT_TRUE(r.allFinite() && J.allFinite() && std::isfinite(error));
 }
 
 }  // namespace

@@ -172,7 +172,8 @@ TEST_F(MujocoReference, JacobiansAgree) {
       out.col(6 + Eigen::Index(i)) = mj_jac.col(mj.m->jnt_dofadr[joints[i]]);
     }
   };
-  double error = 0.0;
+  const walkgen_test::Blocks cols = walkgen_test::velocity_blocks(tree);
+  walkgen_test::JacobianCheck frame_check, com_check;
   for (int trial = 0; trial < 100; ++trial) {
     const auto base = walkgen_test::random_base_pose(rng);
     const Eigen::VectorXd q = walkgen_test::random_configuration(tree, rng);
@@ -184,14 +185,20 @@ TEST_F(MujocoReference, JacobiansAgree) {
       reorder(jacp, base.rotation, J_mj.topRows<3>());
       reorder(jacr, base.rotation, J_mj.bottomRows<3>());
       tree.frame_jacobian(ws, int(i), J);
-      error = std::max(error, (J - J_mj).cwiseAbs().maxCoeff());
+      frame_check.merge(walkgen_test::compare_jacobians(
+          "frame Jacobian of link '" + tree.link(int(i)).name + "'", J, J_mj, {1e-9},
+          {{"linear velocity", 3}, {"angular velocity", 3}}, cols, "MuJoCo's mj_jacBody"));
     }
     mj_jacSubtreeCom(mj.m.get(), mj.d.get(), jacp.data(), root);
     reorder(jacp, base.rotation, Jc_mj);
     tree.center_of_mass_jacobian(ws, Jc);
-    error = std::max(error, (Jc - Jc_mj).cwiseAbs().maxCoeff());
+    com_check.merge(walkgen_test::compare_jacobians("centre-of-mass Jacobian", Jc, Jc_mj, {1e-9},
+                                                    {{"CoM", 3}}, cols,
+                                                    "MuJoCo's mj_jacSubtreeCom"));
   }
-  EXPECT_LE(error, 1e-9);
+  EXPECT_TRUE(frame_check.passed()) << frame_check.message();
+  EXPECT_TRUE(com_check.passed()) << com_check.message();
+  const double error = std::max(frame_check.max_error, com_check.max_error);
   RecordProperty("max_jacobian_error", walkgen_test::scientific(error));
 }
 

@@ -9,14 +9,15 @@
 #include <cmath>
 #include <limits>
 
+#include "support/derivatives.hpp"
 #include "support/expect_error.hpp"
-#include "support/walking_scenarios.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 namespace {
 
 using walkgen::Foot;
 using walkgen::FootPose;
-using walkgen_test::ScenarioRun;
+using walkgen::ScenarioRun;
 using Poly = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 
 // The shrunk sole of a foot at a pose, in world coordinates (counter-clockwise).
@@ -90,8 +91,7 @@ const ScenarioRun& run_of(const std::string& name) {
   static std::map<std::string, ScenarioRun> cache;
   auto it = cache.find(name);
   if (it == cache.end()) {
-    it = cache.emplace(name, walkgen_test::run_scenario<16>(walkgen_test::scenario(name), hrp2()))
-             .first;
+    it = cache.emplace(name, walkgen::run_scenario<16>(walkgen::scenario(name), hrp2())).first;
   }
   return it->second;
 }
@@ -152,7 +152,7 @@ TEST_P(Scenario, FootstepsAreFeasibleAndRelativeYawIsLimited) {
           landing == Foot::left ? hrp2().left_foot_convex_hull : hrp2().right_foot_convex_hull;
       worst_hull = std::max(worst_hull, outside(convex_hull(hull), lx, ly));
       EXPECT_LE(std::abs(f.q - prev.q), hrp2().max_relative_yaw + 1e-9) << "tick " << k;
-      for (const auto& ob : walkgen_test::scenario(GetParam()).obstacles) {
+      for (const auto& ob : walkgen::scenario(GetParam()).obstacles) {
         EXPECT_GE(std::hypot(f.x - ob.x, f.y - ob.y), ob.radius + ob.margin - 1e-9)
             << "tick " << k << " footstep " << i;
       }
@@ -162,7 +162,7 @@ TEST_P(Scenario, FootstepsAreFeasibleAndRelativeYawIsLimited) {
   }
   EXPECT_LE(worst_hull, 1e-3) << "a planned footstep leaves its feasibility polygon";
   // The robot gets past every obstacle: its CoM ends beyond the far side of the margin circle.
-  for (const auto& ob : walkgen_test::scenario(GetParam()).obstacles) {
+  for (const auto& ob : walkgen::scenario(GetParam()).obstacles) {
     EXPECT_GT(run.states.back().com_x[0], ob.x + ob.radius + ob.margin);
   }
   // The interpolated feet: relative yaw and its rate within their limits at every sample.
@@ -221,13 +221,13 @@ INSTANTIATE_TEST_SUITE_P(Hrp2, Scenario,
                          ::testing::Values("straight", "sideways", "curved", "turn", "sequence",
                                            "obstacle"));
 
-// Steady state over the last 7 gait cycles (t = 8.8 s … 20 s, walkgen_test::mean_velocity): the
+// Steady state over the last 7 gait cycles (t = 8.8 s … 20 s, walkgen::mean_velocity): the
 // CoM velocity in the robot frame and the yaw rate, each within 5 % of the command's size,
 // |v − v_cmd| ≤ 0.05 |v_cmd| per component (x, y, yaw).
 void expect_tracking(const std::string& name, const Eigen::Vector3d& command) {
   const ScenarioRun& run = run_of(name);
   ASSERT_EQ(run.states.size(), 200u);
-  const Eigen::Vector3d mean = walkgen_test::mean_velocity(run, 88, 6, 16, hrp2().t);
+  const Eigen::Vector3d mean = walkgen::mean_velocity(run, 88, 6, 16, hrp2().t);
   const double speed = command.head<2>().norm();
   for (int i = 0; i < 3; ++i) {
     const double size = i < 2 ? speed : std::abs(command[2]);
@@ -316,7 +316,7 @@ TEST(WalkingMpc, CorrectionIterationsBoundTheLinearisationError) {
     for (const auto& r : run.results) EXPECT_EQ(r.status, walkgen::MpcStatus::solved) << name;
     EXPECT_GE(corrected, 1) << name;
     EXPECT_LE(corrected, 30) << name << ": corrections are the exception (≤ 15 %), not the rule";
-    const ScenarioRun without = walkgen_test::run_scenario<16>(walkgen_test::scenario(name), plain);
+    const ScenarioRun without = walkgen::run_scenario<16>(walkgen::scenario(name), plain);
     for (const auto& r : without.results) EXPECT_EQ(r.sqp_iterations, 1);
     EXPECT_GT(worst_of(without), 10 * hrp2().sqp_tolerance) << name;
   }
@@ -359,19 +359,22 @@ TYPED_TEST(Jacobian, MatchesFiniteDifferences) {
   U += 0.01 * Eigen::VectorXd::Random(U.size());  // a generic point
   const auto m = mpc.num_rows();
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(m, U.size());
-  Eigen::VectorXd lo(m), up(m), cp(m), cm(m), lc(m), uc(m);
+  Eigen::VectorXd lo(m), up(m), cp(m), lc(m), uc(m);
   mpc.constraint_jacobian(U, J, lo, up);
-  double worst = 0;
-  for (Eigen::Index c = 0; c < U.size(); ++c) {
-    const double h = 1e-6;
-    Eigen::VectorXd Up = U, Um = U;
-    Up[c] += h;
-    Um[c] -= h;
-    mpc.constraint_values(Up, cp, lc, uc);
-    mpc.constraint_values(Um, cm, lc, uc);
-    worst = std::max(worst, ((cp - cm) / (2 * h) - J.col(c)).cwiseAbs().maxCoeff());
+  auto c_of = [&](const Eigen::VectorXd& u) {
+    mpc.constraint_values(u, cp, lc, uc);
+    return cp;
+  };
+  walkgen_test::Blocks rows, cols;  // named by the layout: "ZMP polygon (row 5 of 64)", "F_x"
+  const walkgen::WalkingLayout& layout = mpc.layout();
+  for (int k = 0; k < layout.num_row_blocks(); ++k) {
+    rows.push_back({layout.rows(k).name, layout.rows(k).count()});
   }
-  EXPECT_LE(worst, 1e-7);
+  for (const auto& v : layout.variables()) cols.push_back({v.name, v.count()});
+  const auto check = walkgen_test::compare_jacobians("NMPC constraint Jacobian", J,
+                                                     walkgen_test::central_differences(c_of, U),
+                                                     {1e-7}, rows, cols);
+  EXPECT_TRUE(check.passed()) << check.message();
   // The QP's rows are this linearisation: lb ≤ J U' ≤ ub holds at U' = U exactly when
   // lb_c ≤ c(U) ≤ ub_c does (bounds shifted by c(U) − J U).
   Eigen::VectorXd c0(m);

@@ -17,7 +17,7 @@ using walkgen_test::count_allocations;
 template <typename Mpc>
 void expect_ticks_do_not_allocate(const walkgen::WalkingSettings<double>& s) {
   Mpc mpc(s, /*obstacle_capacity=*/2);
-  walkgen::WalkingInterpolator<double> interp(s);
+  walkgen::WalkingInterpolator<double> interp(walkgen::interpolation_settings(s));
   std::vector<walkgen::TrajectorySample<double>> buffer(std::size_t(interp.samples_per_tick()));
   const std::vector<walkgen::CircleObstacle<double>> none, one{{1.6, 1.0, 1.0, 0.4}},
       blocking{{0.0, 0.0, 2.0, 0.5}};
@@ -37,7 +37,7 @@ void expect_ticks_do_not_allocate(const walkgen::WalkingSettings<double>& s) {
       const auto& r = mpc.solve();
       (r.status == walkgen::MpcStatus::solved ? solved : failed)++;
       corrected += r.sqp_iterations > s.sqp_iterations;
-      interp.interpolate(mpc, buffer.data());
+      interp.interpolate(mpc.tick_plan(), buffer.data());
       mpc.advance();
     }
   });

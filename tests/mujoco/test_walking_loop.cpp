@@ -8,16 +8,16 @@
 #include <string>
 #include <vector>
 
-#include "support/simulated_tasks.hpp"
+#include "walkgen/simulation/simulated_tasks.hpp"
 
 namespace {
 
 using walkgen::LoopStatus;
-using walkgen_test::SimTask;
-using walkgen_test::TaskResult;
+using walkgen::SimTask;
+using walkgen::TaskResult;
 
 const walkgen::KinematicTree<double>& tree() {
-  static const walkgen::KinematicTree<double> t = walkgen_test::humanoid_tree();
+  static const walkgen::KinematicTree<double> t = walkgen::humanoid_tree();
   return t;
 }
 
@@ -43,8 +43,8 @@ class Section92Task : public ::testing::TestWithParam<int> {};
 // its nominal height: the robot reports anything lower as fallen), no QP or IK failure, and the
 // measured ZMP inside the support polygon in at least 99 % of the samples.
 TEST_P(Section92Task, ReachesTheTargetWithoutFallingAndKeepsTheZmpInTheSupportPolygon) {
-  const SimTask task = walkgen_test::section_9_2_tasks()[std::size_t(GetParam())];
-  const TaskResult r = walkgen_test::run_task(task);
+  const SimTask task = walkgen::section_9_2_tasks()[std::size_t(GetParam())];
+  const TaskResult r = walkgen::run_task(task);
   double mean = 0.0, sd = 0.0;
   r.zmp_distance(mean, sd);
   RecordProperty("final_distance_m", std::to_string(r.final_distance));
@@ -58,7 +58,7 @@ TEST_P(Section92Task, ReachesTheTargetWithoutFallingAndKeepsTheZmpInTheSupportPo
   EXPECT_EQ(r.status, LoopStatus::ok) << r.message;
   EXPECT_TRUE(r.stopped) << "the steering never reported the target reached in " << task.time_limit
                          << " s";
-  EXPECT_LE(r.final_distance, walkgen_test::kReachDistance);
+  EXPECT_LE(r.final_distance, walkgen::kTaskReachDistance);
   EXPECT_TRUE(r.reached);
   EXPECT_GT(r.min_base_height, 0.9 * 0.5062);  // never near the fall threshold (80 %)
   EXPECT_EQ(r.rejected_commands, 0);
@@ -83,16 +83,16 @@ TEST_P(Section92Task, ReachesTheTargetWithoutFallingAndKeepsTheZmpInTheSupportPo
 
 INSTANTIATE_TEST_SUITE_P(Tasks, Section92Task, ::testing::Range(0, 4),
                          [](const ::testing::TestParamInfo<int>& info) {
-                           return walkgen_test::section_9_2_tasks()[std::size_t(info.param)].name;
+                           return walkgen::section_9_2_tasks()[std::size_t(info.param)].name;
                          });
 
 // Acceptance: ten minutes with a random command every 5 s: no fall, no QP failure, no IK drift
 // (torso and hip angles stay bounded), and the measured ZMP in the support polygon.
 TEST(WalkingLoop, TenMinutesOfRandomCommandsWithoutFallOrDrift) {
   walkgen::MujocoRobot robot;
-  walkgen_test::HumanoidIk ik(tree());
+  walkgen::HumanoidIk ik(tree());
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
-  walkgen_test::SimLoop loop(settings, robot, ik);
+  walkgen::SimLoop loop(settings, robot, ik);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
   std::mt19937 rng(20261123);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -162,10 +162,10 @@ TEST(WalkingLoop, TenMinutesOfRandomCommandsWithoutFallOrDrift) {
 // sole) is fed back every t_feedback; the plan follows the robot, which stays within millimetres.
 TEST(WalkingLoop, FeedsTheMeasuredComBackEveryFeedbackPeriod) {
   walkgen::MujocoRobot robot;
-  walkgen_test::HumanoidIk ik(tree());
+  walkgen::HumanoidIk ik(tree());
   walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   settings.t_feedback = 2.0 * settings.t;  // every second tick
-  walkgen_test::SimLoop loop(settings, robot, ik);
+  walkgen::SimLoop loop(settings, robot, ik);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
   ASSERT_EQ(loop.set_command({0.03, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   int fed = 0;
@@ -194,9 +194,9 @@ TEST(WalkingLoop, FeedsTheMeasuredComBackEveryFeedbackPeriod) {
 // first sample, cannot start from standing on both feet: start() moves the CoM over it first.
 TEST(WalkingLoop, StartMovesTheComOverTheSupportFootAndTheStateFollowsTheRobot) {
   walkgen::MujocoRobot robot;
-  walkgen_test::HumanoidIk ik(tree());
+  walkgen::HumanoidIk ik(tree());
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
-  walkgen_test::SimLoop loop(settings, robot, ik);
+  walkgen::SimLoop loop(settings, robot, ik);
   EXPECT_EQ(loop.tick().status, LoopStatus::not_started);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
   const auto& st = loop.mpc().state();
@@ -210,19 +210,19 @@ TEST(WalkingLoop, StartMovesTheComOverTheSupportFootAndTheStateFollowsTheRobot) 
 
 TEST(WalkingLoop, BadInputGetsClearErrorsAndNonFiniteCommandsAreRejected) {
   walkgen::MujocoRobot robot;
-  walkgen_test::HumanoidIk ik(tree());
+  walkgen::HumanoidIk ik(tree());
   walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   {
     walkgen::WalkingLoopSettings bad;
     bad.feedback_gain = 1.5;
-    EXPECT_THROW(walkgen_test::SimLoop(settings, robot, ik, bad), walkgen::invalid_argument);
+    EXPECT_THROW(walkgen::SimLoop(settings, robot, ik, bad), walkgen::invalid_argument);
     bad = walkgen::WalkingLoopSettings();
     bad.left_sole_link = "no_such_link";
-    EXPECT_THROW(walkgen_test::SimLoop(settings, robot, ik, bad), walkgen::invalid_argument);
+    EXPECT_THROW(walkgen::SimLoop(settings, robot, ik, bad), walkgen::invalid_argument);
   }
   settings.t_feedback = 0.5;  // not a multiple of t = 0.4
   try {
-    walkgen_test::SimLoop loop(settings, robot, ik);
+    walkgen::SimLoop loop(settings, robot, ik);
     ADD_FAILURE() << "nothing thrown";
   } catch (const walkgen::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("t_feedback"), std::string::npos) << e.what();
@@ -231,17 +231,16 @@ TEST(WalkingLoop, BadInputGetsClearErrorsAndNonFiniteCommandsAreRejected) {
   OtherRobot unknown(robot.info().joint_names);
   unknown.info_.joint_names[3] = "bogus_knee";
   try {
-    walkgen_test::SimLoop loop(walkgen::heicub_settings(), unknown, ik);
+    walkgen::SimLoop loop(walkgen::heicub_settings(), unknown, ik);
     ADD_FAILURE() << "nothing thrown";
   } catch (const walkgen::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("bogus_knee"), std::string::npos) << e.what();
   }
   OtherRobot fewer(robot.info().joint_names);
   fewer.info_.joint_names.pop_back();
-  EXPECT_THROW(walkgen_test::SimLoop(walkgen::heicub_settings(), fewer, ik),
-               walkgen::invalid_argument);
+  EXPECT_THROW(walkgen::SimLoop(walkgen::heicub_settings(), fewer, ik), walkgen::invalid_argument);
 
-  walkgen_test::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
   ASSERT_EQ(loop.set_command({0.02, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   EXPECT_EQ(loop.set_command({std::nan(""), 0.0, 0.0}), walkgen::CommandStatus::non_finite);
@@ -253,8 +252,8 @@ TEST(WalkingLoop, BadInputGetsClearErrorsAndNonFiniteCommandsAreRejected) {
 // A fall is reported and stops the loop: the robot is pushed hard sideways mid-walk.
 TEST(WalkingLoop, AFallIsReportedAndStopsTheLoop) {
   walkgen::MujocoRobot robot;
-  walkgen_test::HumanoidIk ik(tree());
-  walkgen_test::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  walkgen::HumanoidIk ik(tree());
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
   ASSERT_EQ(loop.set_command({0.03, 0.0, 0.0}), walkgen::CommandStatus::accepted);
   for (int k = 0; k < 5; ++k) ASSERT_EQ(loop.tick().status, LoopStatus::ok);

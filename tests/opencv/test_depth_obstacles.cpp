@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 #include <walkgen/core/math.hpp>
+#include <walkgen/mpc/settings.hpp>
 #include <walkgen/opencv/depth_obstacles.hpp>
 #include "support/expect_error.hpp"
 

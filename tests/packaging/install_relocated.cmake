@@ -7,7 +7,7 @@
 #    time would break a moved install);
 # 3. moves WORK/prefix to WORK/moved (the original is gone);
 # 4. builds tests/packaging/relocated_consumer against WORK/moved through
-#    find_package(walkgen COMPONENTS mujoco ceres urdf) and runs it: data_dir() is the moved
+#    find_package(walkgen COMPONENTS simulation) (which brings mujoco, ceres, urdf) and runs it: data_dir() is the moved
 #    share/walkgen, the default robot loads, and the closed loop walks it for one second.
 foreach(_var INSTALL_FROM WORK SOURCE_DIR GENERATOR)
   if(NOT DEFINED ${_var} OR "${${_var}}" STREQUAL "")

@@ -6,17 +6,17 @@
 #include <Eigen/Dense>
 #include <limits>
 
-#include "support/qp_problems.hpp"
 #include "walkgen/qp/dense_qp.hpp"
+#include "walkgen/scenarios/manufactured_qp.hpp"
 
 namespace {
 
 using walkgen::DenseQp;
+using walkgen::kkt_residuals;
+using walkgen::QpFactory;
+using walkgen::QpKind;
+using walkgen::QpProblem;
 using walkgen::QpStatus;
-using walkgen_test::kkt_residuals;
-using walkgen_test::QpFactory;
-using walkgen_test::QpKind;
-using walkgen_test::QpProblem;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "support/count_allocations.hpp"
-#include "support/qp_problems.hpp"
-#include "support/walking_qp.hpp"
 #include "walkgen/qp/dense_qp.hpp"
+#include "walkgen/scenarios/manufactured_qp.hpp"
+#include "walkgen/scenarios/walking_qp_sequence.hpp"
 
 namespace {
 
@@ -39,9 +39,9 @@ TEST(DenseQpNoAlloc, GuardsAreArmed) {
 }
 
 TEST(DenseQpNoAlloc, WalkingSequence) {
-  walkgen_test::WalkingQpSequence seq;
-  using Seq = walkgen_test::WalkingQpSequence;
-  std::vector<walkgen_test::WalkingQp> problems;
+  walkgen::WalkingQpSequence seq;
+  using Seq = walkgen::WalkingQpSequence;
+  std::vector<walkgen::WalkingQp> problems;
   DenseQp<double> reference(Seq::kVars, Seq::kRows);
   for (int k = 0; k < 40; ++k) {
     problems.push_back(seq.build({0.1, 0.0, k > 20 ? 0.1 : 0.0}));
@@ -68,9 +68,9 @@ TEST(DenseQpNoAlloc, WalkingSequence) {
 }
 
 TEST(DenseQpNoAlloc, DegenerateInfeasibleAndInvalidPaths) {
-  walkgen_test::QpFactory f(11);
-  const auto degenerate = f.make(60, 120, walkgen_test::QpKind::degenerate);
-  const auto equalities = f.make(60, 120, walkgen_test::QpKind::equalities);
+  walkgen::QpFactory f(11);
+  const auto degenerate = f.make(60, 120, walkgen::QpKind::degenerate);
+  const auto equalities = f.make(60, 120, walkgen::QpKind::equalities);
   const auto infeasible = f.make_infeasible(60, 120);
   Eigen::VectorXd bad_g = degenerate.g;
   bad_g[3] = std::numeric_limits<double>::quiet_NaN();
@@ -97,8 +97,8 @@ TEST(DenseQpNoAlloc, DegenerateInfeasibleAndInvalidPaths) {
 }
 
 TEST(DenseQpNoAlloc, FixedSizes) {
-  walkgen_test::QpFactory f(12);
-  const auto p = f.make(8, 6, walkgen_test::QpKind::generic);
+  walkgen::QpFactory f(12);
+  const auto p = f.make(8, 6, walkgen::QpKind::generic);
   const Eigen::Matrix<double, 8, 8> H = p.H;
   const Eigen::Matrix<double, 6, 8> A = p.A;
   const Eigen::Matrix<double, 8, 1> g = p.g, l = p.l, u = p.u;

@@ -6,18 +6,18 @@
 
 #include <Eigen/Dense>
 
-#include "support/qp_problems.hpp"
-#include "support/walking_qp.hpp"
 #include "walkgen/qp/dense_qp.hpp"
+#include "walkgen/scenarios/manufactured_qp.hpp"
+#include "walkgen/scenarios/walking_qp_sequence.hpp"
 
 namespace {
 
 using walkgen::DenseQp;
 using walkgen::QpStatus;
-using Seq = walkgen_test::WalkingQpSequence;
+using Seq = walkgen::WalkingQpSequence;
 
-walkgen_test::QpProblem as_problem(const walkgen_test::WalkingQp& w) {
-  walkgen_test::QpProblem p;
+walkgen::QpProblem as_problem(const walkgen::WalkingQp& w) {
+  walkgen::QpProblem p;
   p.H = w.H;
   p.A = w.A;
   p.g = w.g;
@@ -64,8 +64,8 @@ TEST(WalkingQpSequence, WarmStartsAgreeWithColdSolves) {
     }
     const double scale = std::max(1.0, rc.x.lpNorm<Eigen::Infinity>());
     worst_diff = std::max(worst_diff, (rw.x - rc.x).lpNorm<Eigen::Infinity>() / scale);
-    worst_kkt = std::max({worst_kkt, walkgen_test::kkt_residuals(p, rc.x, rc.y, rc.z).max(),
-                          walkgen_test::kkt_residuals(p, rw.x, rw.y, rw.z).max()});
+    worst_kkt = std::max({worst_kkt, walkgen::kkt_residuals(p, rc.x, rc.y, rc.z).max(),
+                          walkgen::kkt_residuals(p, rw.x, rw.y, rw.z).max()});
     warm_iterations += rw.iterations;
     cold_iterations += rc.iterations;
 

@@ -1,6 +1,6 @@
 #pragma once
-// Helpers of the kinematics tests: random configurations within the joint limits, random
-// floating-base poses, and central finite differences of frame and centre-of-mass Jacobians.
+// Helpers of the kinematics tests: random trees, configurations within the joint limits and base
+// poses; frame and centre-of-mass Jacobians against central differences (support/derivatives.hpp).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -9,7 +9,9 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "support/derivatives.hpp"
 #include "walkgen/core/math.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 
@@ -28,26 +30,14 @@ inline std::string scientific(double value) {
 /// A link with a diagonal inertia (0.01, 0.02, 0.025) kg m².
 inline walkgen::LinkDescription make_link(const std::string& name, double mass = 0.0,
                                           const Eigen::Vector3d& com = Eigen::Vector3d::Zero()) {
-  walkgen::LinkDescription l;
-  l.name = name;
-  l.mass = mass;
-  l.com = com;
-  l.inertia = Eigen::Vector3d(0.01, 0.02, 0.025).asDiagonal();
-  return l;
+  return {name, mass, com, Eigen::Vector3d(0.01, 0.02, 0.025).asDiagonal()};
 }
 
 inline walkgen::JointDescription make_joint(
     const std::string& name, walkgen::JointType type, const std::string& parent,
     const std::string& child, const Eigen::Vector3d& xyz,
     const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ()) {
-  walkgen::JointDescription j;
-  j.name = name;
-  j.type = type;
-  j.parent = parent;
-  j.child = child;
-  j.xyz = xyz;
-  j.axis = axis;
-  return j;
+  return {name, type, parent, child, xyz, Eigen::Vector3d::Zero(), axis};
 }
 
 // A random tree: random parents, origins, rpy, axes (not normalised), masses and CoMs, a quarter
@@ -107,89 +97,80 @@ inline Eigen::VectorXd random_configuration(const Tree& tree, std::mt19937& rng)
   return q;
 }
 
-/// Position and orientation of a point fixed in a link, for a configuration.
-struct PointPose {
-  Eigen::Vector3d position;
-  Eigen::Matrix3d rotation;
-};
-
-/// The configuration moved by h along generalised velocity component k (base translation in W,
-/// base rotation in W, joints), evaluated by `f(position, rotation, q)`.
-template <typename F>
-auto perturbed(const BasePose& base, const Eigen::VectorXd& q, int k, double h, F&& f) {
-  BasePose b = base;
-  Eigen::VectorXd qk = q;
-  if (k < 3) {
-    b.position[k] += h;
-  } else if (k < 6) {
-    b.rotation = Eigen::AngleAxisd(h, Eigen::Vector3d::Unit(k - 3)).toRotationMatrix() * b.rotation;
-  } else {
-    qk[k - 6] += h;
-  }
-  return f(b.position, b.rotation, qk);
+/// The generalised velocity's blocks: base position, base rotation, "joint r_knee", ...
+inline Blocks velocity_blocks(const Tree& tree) {
+  Blocks b = {{"base position", 3}, {"base rotation", 3}};
+  for (const auto& name : tree.joint_names()) b.push_back({"joint " + name, 1});
+  return b;
 }
 
-/// Largest entry of |J − J_fd| for the frame Jacobian of `link` at point_L, J_fd by central
-/// differences with step h (angular rows from log(R₊ R₋ᵀ) / 2h).
-inline double frame_jacobian_fd_error(const Tree& tree, const BasePose& base,
-                                      const Eigen::VectorXd& q, int link,
-                                      const Eigen::Vector3d& point_L, double h = 1e-6) {
+/// The frame Jacobian of `link` at point_L (rows ṗ, ω), or for link −1 the centre-of-mass
+/// Jacobian, against central differences (step 1e-6) in the generalised velocity's coordinates
+/// (the base rotation vector in W applied on the left; angular rows from log(R₊ R₋ᵀ) / 2h).
+inline JacobianCheck check_tree_jacobian(const Tree& tree, const BasePose& base,
+                                         const Eigen::VectorXd& q, int link,
+                                         const Eigen::Vector3d& point_L, Tolerance tolerance) {
+  const bool com = link < 0;
   Tree::Workspace ws = tree.make_workspace();
-  auto pose = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, const Eigen::VectorXd& qq) {
-    tree.forward_kinematics(p, R, qq, ws);
-    return PointPose{ws.position_W(link) + ws.rotation_W(link) * point_L, ws.rotation_W(link)};
-  };
   tree.forward_kinematics(base.position, base.rotation, q, ws);
   Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, tree.num_velocities());
-  tree.frame_jacobian(ws, link, J, point_L);
-  double error = 0.0;
-  for (int k = 0; k < tree.num_velocities(); ++k) {
-    const PointPose plus = perturbed(base, q, k, h, pose), minus = perturbed(base, q, k, -h, pose);
-    const Eigen::AngleAxisd turn(plus.rotation * minus.rotation.transpose());
-    Eigen::Matrix<double, 6, 1> column;
-    column << (plus.position - minus.position) / (2 * h), turn.angle() * turn.axis() / (2 * h);
-    error = std::max(error, (J.col(k) - column).cwiseAbs().maxCoeff());
-  }
-  return error;
-}
-
-/// Largest entry of |J − J_fd| for the centre-of-mass Jacobian, by central differences.
-inline double com_jacobian_fd_error(const Tree& tree, const BasePose& base,
-                                    const Eigen::VectorXd& q, double h = 1e-6) {
-  Tree::Workspace ws = tree.make_workspace();
-  auto com = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, const Eigen::VectorXd& qq) {
-    tree.forward_kinematics(p, R, qq, ws);
-    return Eigen::Vector3d(tree.center_of_mass(ws));
+  if (com) tree.center_of_mass_jacobian(ws, J.topRows<3>());
+  if (!com) tree.frame_jacobian(ws, link, J, point_L);
+  using Pose = std::pair<Eigen::Vector3d, Eigen::Matrix3d>;  // the point (or CoM), its rotation
+  auto at = [&](const Eigen::VectorXd& dx) {
+    const Eigen::Vector3d w = dx.segment<3>(3);
+    const Eigen::Matrix3d turn =
+        w.norm() > 0.0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                       : Eigen::Matrix3d::Identity();
+    tree.forward_kinematics(base.position + dx.head<3>(), turn * base.rotation,
+                            q + dx.tail(q.size()), ws);
+    if (com) return Pose(tree.center_of_mass(ws), Eigen::Matrix3d::Identity());
+    return Pose(ws.position_W(link) + ws.rotation_W(link) * point_L, ws.rotation_W(link));
   };
-  tree.forward_kinematics(base.position, base.rotation, q, ws);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> J(3, tree.num_velocities());
-  tree.center_of_mass_jacobian(ws, J);
-  double error = 0.0;
-  for (int k = 0; k < tree.num_velocities(); ++k) {
-    const Eigen::Vector3d column =
-        (perturbed(base, q, k, h, com) - perturbed(base, q, k, -h, com)) / (2 * h);
-    error = std::max(error, (J.col(k) - column).cwiseAbs().maxCoeff());
-  }
-  return error;
+  auto minus = [](const Pose& a, const Pose& b) {
+    const Eigen::AngleAxisd turn(a.second * b.second.transpose());
+    Eigen::VectorXd d(6);
+    d << a.first - b.first, turn.angle() * turn.axis();
+    return d;
+  };
+  const Eigen::Index rows = com ? 3 : 6;
+  return compare_jacobians(
+      com ? "centre-of-mass Jacobian" : "frame Jacobian of link '" + tree.link(link).name + "'",
+      J.topRows(rows), central_differences(tree.num_velocities(), 1e-6, at, minus).topRows(rows),
+      tolerance,
+      com ? Blocks{{"CoM", 3}} : Blocks{{"point linear velocity", 3}, {"angular velocity", 3}},
+      velocity_blocks(tree));
 }
 
-/// Largest central-difference errors of frame Jacobians (every link, at random points) and of the
-/// centre-of-mass Jacobian, over the configurations added.
-struct JacobianFdErrors {
-  double frame = 0.0;
-  double com = 0.0;
+/// Non-default body points and weights of the IK residual (IkResidualSettings or CeresIkSettings),
+/// so that every term of its Jacobian counts.
+template <typename Settings>
+Settings offset_ik_settings(Settings s = Settings()) {
+  s.com_body_point = Eigen::Vector3d(0.01, -0.02, 0.03);
+  s.lf_body_point = Eigen::Vector3d(0.05, 0.01, 0.0);
+  s.rf_body_point = Eigen::Vector3d(-0.03, -0.02, 0.01);
+  s.foot_orientation_weight = 2.0;
+  s.com_weight = 0.5;
+  return s;
+}
+
+/// Frame Jacobians (every link, at random points) and the centre-of-mass Jacobian against
+/// central differences over the configurations added: the worst of each.
+struct TreeJacobianChecks {
+  JacobianCheck frame, com;
 
   /// Adds a random base pose and in-limit configuration of `tree`; the frame Jacobian of each
   /// link is taken at a point uniform in [-point_range, point_range]^3 of its frame.
-  void add_random_configuration(const Tree& tree, std::mt19937& rng, double point_range) {
+  void add_random_configuration(const Tree& tree, std::mt19937& rng, double point_range,
+                                Tolerance tolerance) {
     const auto base = random_base_pose(rng);
     const Eigen::VectorXd q = random_configuration(tree, rng);
     std::uniform_real_distribution<double> u(-point_range, point_range);
     for (int link = 0; link < tree.num_links(); ++link) {
       const Eigen::Vector3d point_L(u(rng), u(rng), u(rng));
-      frame = std::max(frame, frame_jacobian_fd_error(tree, base, q, link, point_L));
+      frame.merge(check_tree_jacobian(tree, base, q, link, point_L, tolerance));
     }
-    com = std::max(com, com_jacobian_fd_error(tree, base, q));
+    com.merge(check_tree_jacobian(tree, base, q, -1, Eigen::Vector3d::Zero(), tolerance));
   }
 };
 

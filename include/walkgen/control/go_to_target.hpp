@@ -23,7 +23,7 @@
 
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
-#include "walkgen/mpc/settings.hpp"
+#include "walkgen/core/obstacle.hpp"
 
 namespace walkgen {
 
@@ -168,7 +168,7 @@ class GoToTarget {
         double best = 1e9;
         for (double side : {1.0, -1.0}) {
           const double a = base + side * half;
-          const double turn = std::abs(std::remainder(a - pose.yaw, 2.0 * kPi));
+          const double turn = angle_distance(a, pose.yaw);
           if (turn < best) {
             best = turn;
             side_[i] = side;

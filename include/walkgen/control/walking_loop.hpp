@@ -33,8 +33,10 @@
 #include <string>
 #include <vector>
 
+#include "walkgen/control/pattern_targets.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
+#include "walkgen/core/math.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
@@ -141,7 +143,7 @@ class WalkingLoop {
         tree_(ik.tree()),
         ws_(tree_.make_workspace()),
         mpc_(settings),
-        interp_(settings) {
+        interp_(interpolation_settings(settings)) {
     check_argument(loop_.feedback_gain > 0.0 && loop_.feedback_gain <= 1.0,
                    "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]",
                    loop_.feedback_gain);
@@ -239,7 +241,7 @@ class WalkingLoop {
     }
     if (loop_.com_feedback && ticks_ > 0 && ticks_ % feedback_every_ == 0) feed_back();
     tick_.mpc = mpc_.solve().status;
-    interp_.interpolate(mpc_, plan_.data());
+    interp_.interpolate(mpc_.tick_plan(), plan_.data());
     const double dt = interp_.command_period();
     for (std::size_t k = 0; k < plan_.size(); ++k) {
       LoopSample& out = samples_[k];
@@ -319,7 +321,7 @@ class WalkingLoop {
     tree_.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q_tree_, ws_);
     const Eigen::Matrix3d& R_base_sole = ws_.rotation_W(sole);
     // Yaw of the sole in the base frame, so that the sole's yaw in W becomes pose.q.
-    const double sole_yaw = std::atan2(R_base_sole(1, 0), R_base_sole(0, 0));
+    const double sole_yaw = yaw_of(R_base_sole);
     base_R_W_ = Eigen::AngleAxisd(pose.q - sole_yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     base_p_W_ = Eigen::Vector3d(pose.x, pose.y, 0.0) - base_R_W_ * ws_.position_W(sole);
   }
@@ -335,7 +337,7 @@ class WalkingLoop {
     const int sole = sole_[foot == Foot::left ? 0 : 1];
     const Eigen::Vector3d p = link_position_W(sole);
     const Eigen::Matrix3d R = link_rotation_W(sole);
-    return {p.x(), p.y(), std::atan2(R(1, 0), R(0, 0))};
+    return {p.x(), p.y(), yaw_of(R)};
   }
 
   /// §6.3: the CoM of the measured joints, from the support sole where the plan has it.

@@ -14,15 +14,10 @@
 
 #include <algorithm>
 
+#include "walkgen/core/foot.hpp"
 #include "walkgen/interpolation/polynomial.hpp"
 
 namespace walkgen {
-
-/// A planar foot pose on the ground: position [m] and yaw [rad], world frame.
-template <typename Scalar>
-struct FootPose {
-  Scalar x = Scalar(0), y = Scalar(0), q = Scalar(0);
-};
 
 /// A foot's horizontal motion: x, y [m] and yaw q [rad], each with its two derivatives.
 template <typename Scalar>
@@ -45,14 +40,6 @@ template <typename Scalar>
 struct SwingSample {
   FootMotion<Scalar> motion;
   Sample3<Scalar> z{};
-};
-
-/// Timing of a step (all in seconds since the step began).
-template <typename Scalar>
-struct StepTiming {
-  Scalar t_ds;         ///< double-support duration at the start of the step
-  Scalar t_step;       ///< step duration
-  Scalar step_height;  ///< apex height of the swing foot [m]
 };
 
 /// The swing foot at step time tau, given its motion `from` at step time tau0 ≤ tau (a tick)

@@ -5,6 +5,10 @@
 /// (z = c − c_z/g c̈, eq. 2.6–2.7), the support foot standing, the swing foot on its polynomials
 /// (interpolation/swing_foot.hpp). The CoM yaw is the mean of the feet's yaws.
 ///
+/// The data path runs one way: the generator emits a TickPlan value (WalkingMpc::tick_plan()),
+/// the interpolator consumes that value and its own few numbers (InterpolationSettings, e.g.
+/// walkgen::interpolation_settings(walking_settings)). Nothing here knows the generator.
+///
 /// Trajectories are stored in the thesis's CSV column order (§6.3), 21 columns:
 ///   com_x com_dx com_ddx com_y com_dy com_ddy com_z com_q com_dq com_ddq zmp_x zmp_y zmp_z
 ///   lf_x lf_y lf_z lf_q rf_x rf_y rf_z rf_q
@@ -12,12 +16,14 @@
 /// 21). Row r is time r · command_period.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <ostream>
+#include <string>
 #include <vector>
 
+#include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/interpolation/swing_foot.hpp"
-#include "walkgen/mpc/settings.hpp"
 
 namespace walkgen {
 
@@ -37,50 +43,70 @@ struct TrajectorySample {
   const SwingSample<Scalar>& foot(Foot f) const { return f == Foot::left ? left : right; }
 };
 
-/// Samples the plan of a WalkingMpc between two ticks. Stateless apart from its settings.
+/// The interpolator's own numbers. No defaults: they must match the generator's settings
+/// (walkgen::interpolation_settings() copies them from WalkingSettings).
+template <typename Scalar = double>
+struct InterpolationSettings {
+  Scalar t;               ///< [s] generator period: one tick, sampled by command_period
+  Scalar command_period;  ///< [s] period of the samples; divides t
+  Scalar com_z;           ///< [m] CoM height of the inverted pendulum
+  Scalar gravity;         ///< [m/s²]
+};
+
+/// What one generator tick hands on: the state it planned from and the part of the plan that the
+/// next t seconds follow. A value (no reference into the generator), allocation-free.
+template <typename Scalar = double>
+struct TickPlan {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  Scalar time = Scalar(0);       ///< [s] of the tick
+  Scalar step_time = Scalar(0);  ///< [s] elapsed in the current step (phase · t)
+  Vector3 com_x = Vector3::Zero(), com_y = Vector3::Zero();  ///< CoM x, ẋ, ẍ and y, ẏ, ÿ
+  Scalar jerk_x = Scalar(0), jerk_y = Scalar(0);  ///< the plan's first jerks, held over the tick
+  Foot support_foot = Foot::left;                 ///< the foot on the ground
+  FootPose<Scalar> support;                       ///< its pose
+  FootMotion<Scalar> swing;                       ///< the other foot's motion now
+  FootPose<Scalar> landing;                       ///< the next planned footstep (swing target)
+  StepTiming<Scalar> timing{};                    ///< of the current step
+};
+
+/// Samples a TickPlan at the command period. Stateless apart from its settings.
 template <typename Scalar = double>
 class WalkingInterpolator {
  public:
-  explicit WalkingInterpolator(const WalkingSettings<Scalar>& settings)
+  /// @throws walkgen::invalid_argument unless every number is finite and positive and
+  ///         command_period divides t.
+  explicit WalkingInterpolator(const InterpolationSettings<Scalar>& settings)
       : dt_(settings.command_period),
-        per_tick_(int(std::lround(settings.t / settings.command_period))),
+        per_tick_(checked_samples_per_tick(settings)),
         h_(settings.com_z / settings.gravity),
-        com_z_(settings.com_z) {
-    check_argument(per_tick_ >= 1, "WalkingInterpolator: command_period",
-                   "a period <= t = " + std::to_string(settings.t), settings.command_period);
-  }
+        com_z_(settings.com_z) {}
 
   /// Samples per tick: t / command_period.
   int samples_per_tick() const { return per_tick_; }
   Scalar command_period() const { return dt_; }
 
-  /// Writes samples_per_tick() samples at t_k + i·command_period, i = 0…, of the plan that
-  /// mpc.solve() just made (call before mpc.advance()). `out` must hold that many samples.
-  /// No allocation.
-  template <typename Mpc>
-  void interpolate(const Mpc& mpc, TrajectorySample<Scalar>* out) const {
-    const auto& st = mpc.state();
-    const auto& plan = mpc.plan();
-    const StepTiming<Scalar> timing = mpc.step_timing();
-    const Scalar tau0 = Scalar(st.phase) * mpc.settings().t;
-    const FootPose<Scalar> target = plan.footstep(1);
+  /// Writes samples_per_tick() samples of `plan` at plan.time + i·command_period, i = 0…
+  /// `out` must hold that many samples. No allocation.
+  void interpolate(const TickPlan<Scalar>& plan, TrajectorySample<Scalar>* out) const {
     SwingSample<Scalar> support;
-    support.motion = FootMotion<Scalar>::at_rest(st.support);
+    support.motion = FootMotion<Scalar>::at_rest(plan.support);
+    const Scalar tau0 = plan.step_time;
     for (int i = 0; i < per_tick_; ++i) {
       TrajectorySample<Scalar>& o = out[i];
       const Scalar t = Scalar(i) * dt_;
-      o.time = st.time + t;
-      o.com_x = lipm_at(st.com_x, plan.jerk_x(0), t);
-      o.com_y = lipm_at(st.com_y, plan.jerk_y(0), t);
+      o.time = plan.time + t;
+      o.com_x = lipm_at(plan.com_x, plan.jerk_x, t);
+      o.com_y = lipm_at(plan.com_y, plan.jerk_y, t);
       o.com_z = com_z_;
       o.zmp_x = o.com_x[0] - h_ * o.com_x[2];
       o.zmp_y = o.com_y[0] - h_ * o.com_y[2];
       o.zmp_z = Scalar(0);
-      const SwingSample<Scalar> swing = swing_foot_sample(timing, st.swing, tau0, target, tau0 + t);
-      o.support_foot = st.support_foot;
-      o.double_support = tau0 + t <= timing.t_ds;
-      (st.support_foot == Foot::left ? o.left : o.right) = support;
-      (st.support_foot == Foot::left ? o.right : o.left) = swing;
+      const SwingSample<Scalar> swing =
+          swing_foot_sample(plan.timing, plan.swing, tau0, plan.landing, tau0 + t);
+      o.support_foot = plan.support_foot;
+      o.double_support = tau0 + t <= plan.timing.t_ds;
+      (plan.support_foot == Foot::left ? o.left : o.right) = support;
+      (plan.support_foot == Foot::left ? o.right : o.left) = swing;
       const auto& lq = o.left.motion.q;
       const auto& rq = o.right.motion.q;
       o.com_q << (lq.position + rq.position) / Scalar(2), (lq.velocity + rq.velocity) / Scalar(2),
@@ -95,6 +121,21 @@ class WalkingInterpolator {
     const Scalar t2 = t * t;
     return {c[0] + c[1] * t + c[2] * t2 / Scalar(2) + jerk * t2 * t / Scalar(6),
             c[1] + c[2] * t + jerk * t2 / Scalar(2), c[2] + jerk * t};
+  }
+
+  static int checked_samples_per_tick(const InterpolationSettings<Scalar>& s) {
+    check_positive("InterpolationSettings.t", s.t);
+    check_positive("InterpolationSettings.command_period", s.command_period);
+    check_positive("InterpolationSettings.com_z", s.com_z);
+    check_positive("InterpolationSettings.gravity", s.gravity);
+    using std::abs;
+    const Scalar ratio = s.t / s.command_period;
+    const int per_tick = ratio < Scalar(1e6) ? int(std::lround(ratio)) : 0;
+    check_argument(per_tick >= 1 && abs(Scalar(per_tick) - ratio) <= Scalar(1e-6) * ratio,
+                   "InterpolationSettings.command_period",
+                   "a period that divides t = " + std::to_string(s.t) + " s evenly",
+                   s.command_period);
+    return per_tick;
   }
 
   Scalar dt_;

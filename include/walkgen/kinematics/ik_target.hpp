@@ -4,13 +4,13 @@
 /// the target of one sample of a walking pattern (CoM, both soles, held pelvis and torso
 /// orientations) and the result of a solve. Core (Eigen only): the closed walking loop
 /// (control/walking_loop.hpp) uses any solver with this interface; walkgen::ceres provides one.
+/// A walking-pattern sample becomes a target in control/pattern_targets.hpp (the data path runs
+/// one way: kinematics knows nothing of the pattern).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
-
-#include "walkgen/interpolation/trajectory.hpp"
 
 namespace walkgen {
 
@@ -40,22 +40,6 @@ struct IkTarget {
            torso_rotation_W.allFinite();
   }
 };
-
-/// The IK target of a sample of the walking pattern (interpolation/trajectory.hpp): CoM
-/// (x, y, com_z), the feet at (x, y, height, yaw), pelvis and torso upright turned by the CoM
-/// yaw. The soles are at the ground height 0 of the generator.
-inline IkTarget ik_target(const TrajectorySample<double>& s) {
-  IkTarget t;
-  t.com_W = Eigen::Vector3d(s.com_x[0], s.com_y[0], s.com_z);
-  auto sole = [](const SwingSample<double>& f) {
-    return SoleTarget{Eigen::Vector3d(f.motion.x.position, f.motion.y.position, f.z.position),
-                      f.motion.q.position};
-  };
-  t.left_foot = sole(s.left);
-  t.right_foot = sole(s.right);
-  t.hold_upright(s.com_q[0]);
-  return t;
-}
 
 /// Outcome of a solve.
 enum class IkStatus {

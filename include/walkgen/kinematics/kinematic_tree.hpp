@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/math.hpp"
 
 namespace walkgen {
 
@@ -470,15 +471,6 @@ class KinematicTree {
     R += s * skew(a);
     R.diagonal().array() += c;
     return R;
-  }
-
-  /// [v]×, the matrix of the cross product v × ·.
-  static Matrix3 skew(const Vector3& v) {
-    Matrix3 S;
-    S << Scalar(0), -v.z(), v.y(),  //
-        v.z(), Scalar(0), -v.x(),   //
-        -v.y(), v.x(), Scalar(0);
-    return S;
   }
 
   int joint_index_of(const std::string& name) const {

@@ -15,6 +15,8 @@
 
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
+#include "walkgen/core/obstacle.hpp"
+#include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/model/support_polygon.hpp"
 
 namespace walkgen {
@@ -35,15 +37,6 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 2> mirror_y(Eigen::Matrix<Scalar, Eigen::D
   return hull;
 }
 }  // namespace detail
-
-/// A circular obstacle the footsteps must stay out of (eq. 2.79): every footstep centre keeps
-/// at least radius + margin from (x, y). World frame, metres.
-template <typename Scalar = double>
-struct CircleObstacle {
-  Scalar x = Scalar(0), y = Scalar(0);
-  Scalar radius = Scalar(0);  ///< [m] > 0
-  Scalar margin = Scalar(0);  ///< [m] ≥ 0, added to the radius (foot size and safety)
-};
 
 /// Pattern generator settings. The in-class defaults are the HRP-2 set (hrp2_settings()).
 template <typename Scalar = double>
@@ -357,6 +350,12 @@ void validate(const WalkingSettings<Scalar>& s) {
     check_up_to("WalkingSettings.obstacles[].radius", o.radius, lim::kMaxPosition, false);
     check_up_to("WalkingSettings.obstacles[].margin", o.margin, lim::kMaxPosition, true);
   }
+}
+
+/// The interpolator's numbers of a settings set (interpolation/trajectory.hpp).
+template <typename Scalar>
+InterpolationSettings<Scalar> interpolation_settings(const WalkingSettings<Scalar>& s) {
+  return {s.t, s.command_period, s.com_z, s.gravity};
 }
 
 }  // namespace walkgen

@@ -19,7 +19,7 @@
 
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
-#include "walkgen/mpc/settings.hpp"
+#include "walkgen/core/obstacle.hpp"
 #include "walkgen/mujoco/mujoco_robot.hpp"
 
 namespace walkgen {

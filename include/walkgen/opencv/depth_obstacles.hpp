@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
-#include "walkgen/mpc/settings.hpp"
+#include "walkgen/core/obstacle.hpp"
 #include "walkgen/opencv/stereo_depth.hpp"
 
 namespace walkgen {

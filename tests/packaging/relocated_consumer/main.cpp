@@ -1,15 +1,13 @@
 // A consumer of a moved walkgen installation (ctest install_relocated): walkgen::data_dir() is the
 // moved prefix's share/walkgen, the default MujocoRobot loads walkgen's humanoid from there, and
-// the closed loop (NMPC, interpolation, Ceres IK, MuJoCo) walks it for three NMPC ticks (1.2 s).
+// the library's closed loop (walkgen::SimLoop: NMPC, interpolation, Ceres IK, MuJoCo) walks it
+// for three NMPC ticks (1.2 s).
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include <walkgen/ceres/inverse_kinematics.hpp>
-#include <walkgen/control/walking_loop.hpp>
 #include <walkgen/core/data_dir.hpp>
-#include <walkgen/mujoco/mujoco_robot.hpp>
-#include <walkgen/robot_io/urdf.hpp>
+#include <walkgen/simulation/humanoid_loop.hpp>
 #include <walkgen/walkgen.hpp>
 
 int main() {
@@ -22,20 +20,14 @@ int main() {
   }
   try {
     walkgen::MujocoRobot robot;  // the default model: data_dir()/models/walkgen_humanoid.xml
-    const auto tree = walkgen::kinematic_tree_from_urdf_file(walkgen::humanoid_urdf_path());
-    using Ik = walkgen::CeresInverseKinematics<15>;
-    Ik ik(tree);
-    walkgen::WalkingLoop<16, Ik> loop(walkgen::heicub_settings(), robot, ik);
+    const auto tree = walkgen::humanoid_tree();  // data_dir()/models/walkgen_humanoid.urdf
+    walkgen::HumanoidIk ik(tree);
+    walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
     if (loop.start().status != walkgen::LoopStatus::ok) {
       std::fprintf(stderr, "FAIL: start() did not succeed\n");
       return 1;
     }
-    const auto true_com = [&robot] {  // MuJoCo's CoM of the whole robot (ground truth)
-      const int root = mj_name2id(robot.model(), mjOBJ_BODY, robot.settings().base_body.c_str());
-      const double* c = robot.data()->subtree_com + 3 * root;
-      return Eigen::Vector2d(c[0], c[1]);
-    };
-    const Eigen::Vector2d c0 = true_com();
+    const Eigen::Vector2d c0 = walkgen::true_com(robot);  // MuJoCo's CoM (ground truth)
     const auto command_status = loop.set_command({0.03, 0.0, 0.0});
     if (command_status != walkgen::CommandStatus::accepted) {
       std::fprintf(stderr, "FAIL: the command was not accepted: %s\n",
@@ -51,7 +43,7 @@ int main() {
       }
       t += loop.mpc().settings().t;
     }
-    const Eigen::Vector2d c1 = true_com();
+    const Eigen::Vector2d c1 = walkgen::true_com(robot);
     const auto& state = loop.mpc().state();
     const double tracking = (c1 - Eigen::Vector2d(state.com_x[0], state.com_y[0])).norm();
     std::printf(

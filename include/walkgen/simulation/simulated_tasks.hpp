@@ -1,48 +1,48 @@
 #pragma once
-// The four test tasks of thesis §9.2 with walkgen's humanoid in MuJoCo, closed loop (figure
-// 6.1): walk to a target object, steered by walkgen::GoToTarget instead of the thesis's
-// keyboard user. Shared by tests/mujoco/test_walking_loop.cpp, examples/walking_simulation.cpp
-// and benchmarks/bench_simulation.cpp.
-//
-// World frame = the generator's: the robot starts at the origin facing +x (left sole at
-// (0, 0.07)). Heicub's settings (Table 6.1) unchanged: 0.034 m/s and 0.075 rad/s at most.
-
-#include <mujoco/mujoco.h>
+/// @file
+/// The four test tasks of thesis §9.2 with walkgen's humanoid in MuJoCo, closed loop (figure
+/// 6.1, SimLoop): walk to a target object, steered by GoToTarget instead of the
+/// thesis's keyboard user, with what each run measured (reached, time, ZMP statistics). Run by
+/// examples/walking_simulation, tests/mujoco/test_walking_loop.cpp and bench_simulation.
+///
+/// World frame = the generator's: the robot starts at the origin facing +x (left sole at
+/// (0, 0.07)). Heicub's settings (Table 6.1) unchanged: 0.034 m/s and 0.075 rad/s at most.
+///
+/// Target simulation: needs humanoid (Ceres, URDF) and mujoco.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "support/humanoid_ik.hpp"
-#include "walkgen/control/go_to_target.hpp"
-#include "walkgen/control/walking_loop.hpp"
-#include "walkgen/mujoco/mujoco_robot.hpp"
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/simulation/humanoid_loop.hpp"
 
-namespace walkgen_test {
+namespace walkgen {
 
-using SimLoop = walkgen::WalkingLoop<16, HumanoidIk>;
-
-/// A task: walk until the CoM is within reach_distance of the target object.
+/// A task: walk until the CoM is within kTaskReachDistance of the target object.
 struct SimTask {
-  std::string name;
-  std::string description;
+  std::string name;                                  ///< straight, curved, obstacle or scan
+  std::string description;                           ///< one line for people
   Eigen::Vector2d target = Eigen::Vector2d::Zero();  ///< the target object's centre [m]
-  std::vector<walkgen::CircleObstacle<double>> obstacles;
-  double time_limit = 120.0;  ///< [s] simulated
+  std::vector<CircleObstacle<double>> obstacles;     ///< NMPC obstacles (eq. 2.79 circles)
+  double time_limit = 120.0;                         ///< [s] simulated
 };
 
 /// Success: the true CoM (MuJoCo) ends within this distance of the target's centre [m].
-constexpr double kReachDistance = 0.25;
+constexpr double kTaskReachDistance = 0.25;
 /// The steering stops this far from the target (the object is 0.05 m in radius and the toes
 /// reach 0.1 m ahead of the CoM).
-constexpr double kStopDistance = 0.2;
+constexpr double kTaskStopDistance = 0.2;
 
 /// §9.2: straight 2 m; a target on the left (curved walk); a chair on the straight way (obstacle
 /// avoidance); the target behind the robot (environmental scan: turn 180° first). `scale` < 1
 /// gives shorter versions (distances scaled, the obstacle's size kept).
+/// @throws walkgen::invalid_argument unless scale is finite and > 0.
 inline std::vector<SimTask> section_9_2_tasks(double scale = 1.0) {
+  check_positive("walkgen::section_9_2_tasks: scale", scale);
   std::vector<SimTask> tasks;
   tasks.push_back({"straight", "walk 2 m straight to the target", {2.0 * scale, 0.0}, {}, 0.0});
   tasks.push_back({"curved",
@@ -73,20 +73,20 @@ inline std::vector<SimTask> section_9_2_tasks(double scale = 1.0) {
 
 /// The objects of a task's scene: the target (a red-orange cylinder standing for the fire
 /// extinguisher) and a chair-like box per obstacle.
-inline std::vector<walkgen::SceneObject> task_objects(const SimTask& task) {
-  std::vector<walkgen::SceneObject> objects;
-  walkgen::SceneObject target;
+inline std::vector<SceneObject> task_objects(const SimTask& task) {
+  std::vector<SceneObject> objects;
+  SceneObject target;
   target.name = "target";
-  target.shape = walkgen::SceneShape::cylinder;
+  target.shape = SceneShape::cylinder;
   target.position = Eigen::Vector3d(task.target.x(), task.target.y(), 0.0);
   target.size = Eigen::Vector3d(0.05, 0.05, 0.35);
   target.rgb = Eigen::Vector3d(0.9, 0.15, 0.05);
   objects.push_back(target);
   for (std::size_t i = 0; i < task.obstacles.size(); ++i) {
     const auto& o = task.obstacles[i];
-    walkgen::SceneObject chair;
+    SceneObject chair;
     chair.name = "obstacle_" + std::to_string(i);
-    chair.shape = walkgen::SceneShape::box;
+    chair.shape = SceneShape::box;
     chair.position = Eigen::Vector3d(o.x, o.y, 0.0);
     const double side = o.radius * std::sqrt(2.0);  // the square inscribed in the circle
     chair.size = Eigen::Vector3d(side, side, 0.3);
@@ -96,23 +96,24 @@ inline std::vector<walkgen::SceneObject> task_objects(const SimTask& task) {
   return objects;
 }
 
-/// One command period of a task run.
+/// One command period of a task run (positions in the world frame [m]).
 struct TaskRow {
-  double time = 0.0;
-  Eigen::Vector3d command = Eigen::Vector3d::Zero();
+  double time = 0.0;                                  ///< the plan's time [s]
+  Eigen::Vector3d command = Eigen::Vector3d::Zero();  ///< (v_x, v_y, ω_z) of the tick
   Eigen::Vector2d com_plan = Eigen::Vector2d::Zero(), zmp_plan = Eigen::Vector2d::Zero();
   Eigen::Vector2d zmp_measured = Eigen::Vector2d::Zero();  ///< plan frame (FK), see LoopSample
   Eigen::Vector2d zmp_true = Eigen::Vector2d::Zero();      ///< MuJoCo's world, true sensor poses
   Eigen::Vector2d com_true = Eigen::Vector2d::Zero();      ///< MuJoCo's whole-body CoM
   double support_margin = 0.0;  ///< of zmp_true in the true support polygon [m]
-  double base_height = 0.0;
-  bool zmp_valid = false;
+  double base_height = 0.0;     ///< [m]
+  bool zmp_valid = false;       ///< both ZMP measurements are valid (a foot on the ground)
 };
 
+/// What a task run measured.
 struct TaskResult {
-  bool reached = false;  ///< the steering stopped, and the true CoM is within kReachDistance
+  bool reached = false;  ///< the steering stopped, and the true CoM is within kTaskReachDistance
   bool stopped = false;  ///< the steering reported the target reached
-  walkgen::LoopStatus status = walkgen::LoopStatus::ok;  ///< ok unless the robot fell/diverged
+  LoopStatus status = LoopStatus::ok;  ///< ok unless the robot fell/diverged
   std::string message;
   double final_distance = 0.0;  ///< true CoM to the target's centre [m]
   double time = 0.0;            ///< simulated [s], transfer excluded
@@ -121,7 +122,7 @@ struct TaskResult {
   int qp_failures = 0, ik_failures = 0;
   int rejected_commands = 0;  ///< steering commands the loop rejected (non-finite, too large)
   double min_base_height = 1e9;
-  std::vector<TaskRow> rows;
+  std::vector<TaskRow> rows;  ///< every command period
 
   /// NMPC ZMP vs measured ZMP (plan frame) over the samples with a valid measurement [m].
   void zmp_distance(double& mean, double& stddev) const {
@@ -150,8 +151,8 @@ struct TaskResult {
 };
 
 /// The humanoid in MuJoCo with the objects of `task`.
-inline walkgen::MujocoRobotSettings task_robot_settings(const SimTask& task) {
-  walkgen::MujocoRobotSettings s;
+inline MujocoRobotSettings task_robot_settings(const SimTask& task) {
+  MujocoRobotSettings s;
   s.objects = task_objects(task);
   s.view_width = 960;  // walking_simulation --video films at up to 960 x 540
   s.view_height = 540;
@@ -159,58 +160,45 @@ inline walkgen::MujocoRobotSettings task_robot_settings(const SimTask& task) {
 }
 
 /// Heicub's settings with the task's obstacles.
-inline walkgen::WalkingSettings<double> task_walking_settings(const SimTask& task) {
-  walkgen::WalkingSettings<double> s = walkgen::heicub_settings();
+inline WalkingSettings<double> task_walking_settings(const SimTask& task) {
+  WalkingSettings<double> s = heicub_settings();
   s.obstacles = task.obstacles;
   return s;
 }
 
-/// The robot's pose for steering: the middle of its feet (support and swing foot now), which
-/// does not sway like the CoM, and its heading.
-inline walkgen::PlanarPose walking_pose(const walkgen::WalkingState<double>& st) {
-  return {(st.support.x + st.swing.x.position) / 2.0, (st.support.y + st.swing.y.position) / 2.0,
-          st.heading()};
-}
-
-/// The true whole-body CoM of a MuJoCo robot (ground plane) [m].
-inline Eigen::Vector2d true_com(walkgen::MujocoRobot& robot) {
-  const int root = mj_name2id(robot.model(), mjOBJ_BODY, robot.settings().base_body.c_str());
-  const double* c = robot.data()->subtree_com + 3 * root;
-  return {c[0], c[1]};
-}
-
 /// Runs `task` closed loop until the steering stops (plus `settle` seconds standing), the time
 /// limit, or a fall. `on_tick(robot, loop, result)` runs after every tick (e.g. to render).
-inline TaskResult run_task(const SimTask& task, double settle = 2.0,
-                           const std::function<void(walkgen::MujocoRobot&, const SimLoop&,
-                                                    const TaskResult&)>& on_tick = nullptr) {
+/// Numerical outcomes (QP and IK failures, a fall) are in the result, never thrown.
+/// @throws walkgen::invalid_argument when the humanoid's model cannot be loaded.
+inline TaskResult run_task(
+    const SimTask& task, double settle = 2.0,
+    const std::function<void(MujocoRobot&, const SimLoop&, const TaskResult&)>& on_tick = nullptr) {
   TaskResult result;
-  static const walkgen::KinematicTree<double> tree = humanoid_tree();
-  walkgen::MujocoRobot robot(task_robot_settings(task));
+  static const KinematicTree<double> tree = humanoid_tree();
+  MujocoRobot robot(task_robot_settings(task));
   HumanoidIk ik(tree);
-  const walkgen::WalkingSettings<double> settings = task_walking_settings(task);
+  const WalkingSettings<double> settings = task_walking_settings(task);
   SimLoop loop(settings, robot, ik);
-  const walkgen::LoopTick& started = loop.start();
+  const LoopTick& started = loop.start();
   const double t0 = robot.output().time;
-  if (started.status != walkgen::LoopStatus::ok) {
+  if (started.status != LoopStatus::ok) {
     result.status = started.status;
     result.message = started.message;
     return result;
   }
-  walkgen::GoToTargetSettings steering_settings;
-  steering_settings.stop_distance = kStopDistance;
-  walkgen::GoToTarget steering(task.target, settings.max_command, task.obstacles,
-                               steering_settings);
+  GoToTargetSettings steering_settings;
+  steering_settings.stop_distance = kTaskStopDistance;
+  GoToTarget steering(task.target, settings.max_command, task.obstacles, steering_settings);
   double stopped_at = -1.0;
   while (robot.output().time - t0 < task.time_limit) {
-    const walkgen::GoToTargetCommand cmd = steering(walking_pose(loop.mpc().state()));
-    result.rejected_commands += loop.set_command(cmd.command) != walkgen::CommandStatus::accepted;
+    const GoToTargetCommand cmd = steering(walking_pose(loop.mpc().state()));
+    result.rejected_commands += loop.set_command(cmd.command) != CommandStatus::accepted;
     if (cmd.reached && stopped_at < 0.0) {
       result.stopped = true;
       stopped_at = robot.output().time;
     }
-    const walkgen::LoopTick& tick = loop.tick();
-    result.qp_failures += tick.mpc != walkgen::MpcStatus::solved;
+    const LoopTick& tick = loop.tick();
+    result.qp_failures += tick.mpc != MpcStatus::solved;
     result.ik_failures += tick.ik_failures;
     for (const auto& s : loop.samples()) {
       TaskRow row;
@@ -219,11 +207,11 @@ inline TaskResult run_task(const SimTask& task, double settle = 2.0,
       row.com_plan = Eigen::Vector2d(s.plan.com_x[0], s.plan.com_y[0]);
       row.zmp_plan = Eigen::Vector2d(s.plan.zmp_x, s.plan.zmp_y);
       row.zmp_measured = s.zmp.zmp_W.head<2>();
-      const walkgen::MeasuredZmp truth = walkgen::measured_zmp(s.ft, robot.info().ft_sensor_height);
+      const MeasuredZmp truth = measured_zmp(s.ft, robot.info().ft_sensor_height);
       row.zmp_true = truth.zmp_W.head<2>();
       row.zmp_valid = s.zmp.valid && truth.valid;
-      row.support_margin = walkgen::support_polygon_margin(
-          truth, s.ft, robot.info().ft_sensor_height, settings.foot_length, settings.foot_width);
+      row.support_margin = support_polygon_margin(truth, s.ft, robot.info().ft_sensor_height,
+                                                  settings.foot_length, settings.foot_width);
       row.base_height = s.base_height;
       for (int f = 0; f < 2; ++f) {  // soles on the ground, at their true poses
         if (!truth.in_contact[std::size_t(f)]) continue;
@@ -242,8 +230,7 @@ inline TaskResult run_task(const SimTask& task, double settle = 2.0,
       result.rows[k].com_true = com;
     }
     if (on_tick) on_tick(robot, loop, result);
-    if (tick.status == walkgen::LoopStatus::fallen ||
-        tick.status == walkgen::LoopStatus::diverged) {
+    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged) {
       result.status = tick.status;
       result.message = tick.message;
       break;
@@ -252,9 +239,9 @@ inline TaskResult run_task(const SimTask& task, double settle = 2.0,
   }
   result.time = robot.output().time - t0;
   result.final_distance = (true_com(robot) - task.target).norm();
-  result.reached = result.status == walkgen::LoopStatus::ok && result.stopped &&
-                   result.final_distance <= kReachDistance;
+  result.reached = result.status == LoopStatus::ok && result.stopped &&
+                   result.final_distance <= kTaskReachDistance;
   return result;
 }
 
-}  // namespace walkgen_test
+}  // namespace walkgen

@@ -1,37 +1,46 @@
 #pragma once
-// A walking-like sequence of QPs for testing and benchmarking the dense QP solver.
-//
-// Each QP is the linearised NMPC problem of thesis §2.2 (eq. 2.43–2.78) for an HRP-2-like robot:
-// N = 16 samples of T = 0.1 s, steps of 0.8 s (8 samples), 2 planned footsteps.
-//   variables (68): CoM jerk x (16), footsteps x (2), CoM jerk y (16), footsteps y (2),
-//                   yaw jerk of the left foot (16), of the right foot (16)       (eq. 2.52–2.54)
-//   rows (106):     ZMP in the support foot's rotated, margin-shrunk rectangle: 4 × 16 (eq. 2.68)
-//                   next footstep in the feasibility pentagon of the foot before it: 5 × 2 (2.71)
-//                   relative foot yaw: 16 two-sided (2.75); relative yaw rate: 16 two-sided (2.77)
-// Foot yaws inside the ZMP/feasibility rows are frozen at the commanded yaw rate, which makes
-// every QP linear (the real generator linearises them, eq. 2.86). The sequence walks: each tick
-// applies the first jerks, shifts the support schedule (eq. 2.49) and lands planned footsteps,
-// so consecutive QPs differ slightly, as in a control loop.
-//
-// Small deviations from the thesis, needed for a strictly convex QP: the jerk weight γ also
-// applies to the yaw jerks, and footsteps carry a weak pull (1e-6) to the nominal step, so that a
-// footstep with no sample in the horizon (phase 0) still has a unique optimum.
+/// @file
+/// A walking-like sequence of QPs for testing and benchmarking the dense QP solver (tests,
+/// bench_qp, examples/qp_walking_sequence); docs/qp.md quotes its numbers.
+///
+/// Each QP is the linearised NMPC problem of thesis §2.2 (eq. 2.43–2.78) for an HRP-2-like robot:
+/// N = 16 samples of T = 0.1 s, steps of 0.8 s (8 samples), 2 planned footsteps.
+///   variables (68): CoM jerk x (16), footsteps x (2), CoM jerk y (16), footsteps y (2),
+///                   yaw jerk of the left foot (16), of the right foot (16)       (eq. 2.52–2.54)
+///   rows (106):     ZMP in the support foot's rotated, margin-shrunk rectangle: 4 × 16 (eq. 2.68)
+///                   next footstep in the feasibility pentagon of the foot before it: 5 × 2 (2.71)
+///                   relative foot yaw: 16 two-sided (2.75); relative yaw rate: 16 two-sided (2.77)
+/// Foot yaws inside the ZMP/feasibility rows are frozen at the commanded yaw rate, which makes
+/// every QP linear (the real generator, WalkingMpc, linearises them, eq. 2.86). The sequence
+/// walks: each tick applies the first jerks, shifts the support schedule (eq. 2.49) and lands
+/// planned footsteps, so consecutive QPs differ slightly, as in a control loop.
+///
+/// Small deviations from the thesis, needed for a strictly convex QP: the jerk weight γ also
+/// applies to the yaw jerks, and footsteps carry a weak pull (1e-6) to the nominal step, so that a
+/// footstep with no sample in the horizon (phase 0) still has a unique optimum.
+///
+/// Depends on the core only (Eigen).
 
 #include <Eigen/Core>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "walkgen/core/exceptions.hpp"
 #include "walkgen/model/lipm.hpp"
 #include "walkgen/model/support_polygon.hpp"
 
-namespace walkgen_test {
+namespace walkgen {
 
+/// One QP of the sequence: minimise ½ xᵀ H x + gᵀ x subject to lb ≤ A x ≤ ub (no bounds on x).
 struct WalkingQp {
-  Eigen::MatrixXd H, A;
-  Eigen::VectorXd g, lb, ub;
-  int phase = 0;  // samples elapsed in the current step
+  Eigen::MatrixXd H, A;       ///< 68 × 68, 106 × 68
+  Eigen::VectorXd g, lb, ub;  ///< 68, 106, 106 (±infinity where a side is open)
+  int phase = 0;              ///< samples elapsed in the current step
 };
+
+/// The QPs of a walk, one per tick: build() the current one, solve it, advance() with the
+/// solution.
 
 class WalkingQpSequence {
  public:
@@ -41,12 +50,13 @@ class WalkingQpSequence {
   static constexpr int kVars = 2 * (kN + kSteps) + 2 * kN;    // 68
   static constexpr int kRows = 4 * kN + 5 * kSteps + 2 * kN;  // 106
 
+  /// A velocity command in the robot frame.
   struct Command {
-    double vx, vy, wz;  // m/s, m/s, rad/s in the robot frame
+    double vx, vy, wz;  ///< [m/s], [m/s], [rad/s]
   };
 
-  // The command schedule shared by the tests, the benchmark and the example: 8 s straight,
-  // 6 s curved, 4 s sideways, then turning on the spot (ticks of T = 0.1 s).
+  /// The command schedule shared by the tests, the benchmark and the example: 8 s straight,
+  /// 6 s curved, 4 s sideways, then turning on the spot (ticks of T = 0.1 s).
   static Command demo_command(int tick) {
     if (tick < 80) return {0.1, 0.0, 0.0};
     if (tick < 140) return {0.1, 0.0, 0.1};
@@ -67,11 +77,11 @@ class WalkingQpSequence {
     right_of_left << -0.25, -0.14, 0.25, -0.14, 0.30, -0.22, 0.0, -0.32, -0.30, -0.22;
     Eigen::Matrix<double, 5, 2> left_of_right = right_of_left;
     left_of_right.col(1) *= -1.0;
-    walkgen::polygon_halfplanes(right_of_left, hull_A_[0], hull_b_[0]);
-    walkgen::polygon_halfplanes(left_of_right, hull_A_[1], hull_b_[1]);
+    polygon_halfplanes(right_of_left, hull_A_[0], hull_b_[0]);
+    polygon_halfplanes(left_of_right, hull_A_[1], hull_b_[1]);
   }
 
-  // The QP of the current tick for command cmd.
+  /// The QP of the current tick for command cmd.
   WalkingQp build(const Command& cmd) const {
     WalkingQp qp;
     qp.phase = phase_;
@@ -228,8 +238,10 @@ class WalkingQpSequence {
     return qp;
   }
 
-  // Applies the first sample of solution u and advances one tick.
+  /// Applies the first sample of solution u and advances one tick.
+  /// @throws walkgen::invalid_argument unless u has kVars (68) entries.
   void advance(const Eigen::VectorXd& u) {
+    check_argument(u.size() == kVars, "WalkingQpSequence::advance: u", "68 entries", u.size());
     const int oy = kN + kSteps, ol = 2 * (kN + kSteps), orr = ol + kN;
     cx_ = step_.advance(cx_, u[0]);
     cy_ = step_.advance(cy_, u[oy]);
@@ -247,22 +259,25 @@ class WalkingQpSequence {
     }
   }
 
-  // State feedback: the measured CoM differs from the planned one by (dx, dy) metres.
+  /// State feedback: the measured CoM differs from the planned one by (dx, dy) metres.
   void set_com_offset(double dx, double dy) {
     cx_[0] += dx;
     cy_[0] += dy;
   }
 
+  /// CoM state (position [m], velocity [m/s], acceleration [m/s²]) along x and y.
   const Eigen::Vector3d& com_x() const { return cx_; }
   const Eigen::Vector3d& com_y() const { return cy_; }
+  /// The support foot (x [m], y [m], yaw [rad]) and whether it is the left one.
   const Eigen::Vector3d& support() const { return support_; }
   bool left_support() const { return left_support_; }
-  const walkgen::LipmPreview<double>& lipm() const { return lipm_; }
+  /// The preview matrices (eq. 2.30–2.42) the QPs are built from.
+  const LipmPreview<double>& lipm() const { return lipm_; }
 
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
-  walkgen::LipmPreview<double> lipm_;
-  walkgen::LipmStep<double> step_;
+  LipmPreview<double> lipm_;
+  LipmStep<double> step_;
   Eigen::Vector3d cx_, cy_, yaw_left_, yaw_right_;
   Eigen::Vector3d support_, swing_;  // x, y, yaw
   // Landing-region half-planes: [0] after a left support foot, [1] after a right one.
@@ -272,4 +287,4 @@ class WalkingQpSequence {
   int phase_ = 0;
 };
 
-}  // namespace walkgen_test
+}  // namespace walkgen

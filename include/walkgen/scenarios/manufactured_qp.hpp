@@ -1,10 +1,14 @@
 #pragma once
-// Random QPs with a known solution (manufactured from chosen KKT points) and an independent
-// KKT checker, for testing walkgen::DenseQp.
-//
-// A problem is built backwards: pick H ≻ 0, x*, which constraints are active on which side and
-// their multipliers; put the active bounds through x*, the inactive ones at a positive distance,
-// and set g = −(H x* + Aᵀ y* + z*). Then x* is the unique minimiser (H ≻ 0, KKT hold).
+/// @file
+/// Random QPs with a known solution (manufactured from chosen KKT points) and a KKT checker
+/// independent of any solver: the reference problems of walkgen::DenseQp's tests and of
+/// bench_qp (docs/design.md convention 15).
+///
+/// A problem is built backwards: pick H ≻ 0, x*, which constraints are active on which side and
+/// their multipliers; put the active bounds through x*, the inactive ones at a positive distance,
+/// and set g = −(H x* + Aᵀ y* + z*). Then x* is the unique minimiser (H ≻ 0, KKT hold).
+///
+/// Depends on the core only (Eigen).
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -14,25 +18,32 @@
 #include <string>
 #include <vector>
 
-namespace walkgen_test {
+#include "walkgen/core/exceptions.hpp"
 
+namespace walkgen {
+
+/// min ½ xᵀ H x + gᵀ x subject to lb ≤ A x ≤ ub and l ≤ x ≤ u (±infinity where a side is
+/// open), with its solution.
 struct QpProblem {
-  Eigen::MatrixXd H, A;
-  Eigen::VectorXd g, lb, ub, l, u;
-  Eigen::VectorXd x_star;  // the solution (empty for infeasible problems)
+  Eigen::MatrixXd H, A;             ///< n × n (positive definite), m × n
+  Eigen::VectorXd g, lb, ub, l, u;  ///< n, m, m, n, n
+  Eigen::VectorXd x_star;           ///< the solution (empty for infeasible problems)
   bool feasible = true;
-  std::string kind;
+  std::string kind;  ///< to_string(QpKind), or "infeasible"
 };
+
+/// What a manufactured problem stresses.
 
 enum class QpKind {
-  generic,      // random active set, positive multipliers
-  degenerate,   // duplicated, scaled and combined active rows, weakly active rows
-  equalities,   // a block of equality rows (multipliers of any sign) and fixed variables
-  many_bounds,  // most variables at a bound
-  parallel,     // pairs of parallel rows: ranges lb ≤ aᵀx ≤ ub and opposite copies −a
+  generic,      ///< random active set, positive multipliers
+  degenerate,   ///< duplicated, scaled and combined active rows, weakly active rows
+  equalities,   ///< a block of equality rows (multipliers of any sign) and fixed variables
+  many_bounds,  ///< most variables at a bound
+  parallel,     ///< pairs of parallel rows: ranges lb ≤ aᵀx ≤ ub and opposite copies −a
 };
 
-inline const char* to_string(QpKind k) {
+/// The enumerator's name; "unknown" out of range.
+constexpr const char* to_string(QpKind k) noexcept {
   switch (k) {
     case QpKind::generic:
       return "generic";
@@ -45,18 +56,22 @@ inline const char* to_string(QpKind k) {
     case QpKind::parallel:
       return "parallel";
   }
-  return "?";
+  return "unknown";
 }
 
+/// Makes manufactured problems from a seeded std::mt19937: the same seed gives the same problems
+/// with the same standard library (its distributions are implementation-defined).
 class QpFactory {
  public:
   explicit QpFactory(unsigned seed) : rng_(seed) {}
 
+  /// Draws: uniform in [a, b), integer in [a, b], standard normal, true with probability p.
   double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
   int integer(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng_); }
   double normal() { return std::normal_distribution<double>(0.0, 1.0)(rng_); }
   bool coin(double p = 0.5) { return uniform(0.0, 1.0) < p; }
 
+  /// A random r × c matrix of standard normal entries.
   Eigen::MatrixXd random_matrix(int r, int c) {
     Eigen::MatrixXd M(r, c);
     for (int i = 0; i < r; ++i)
@@ -64,7 +79,7 @@ class QpFactory {
     return M;
   }
 
-  // Symmetric positive definite with eigenvalues log-uniform in [1/cond, 1] · scale.
+  /// Symmetric positive definite with eigenvalues log-uniform in [1/cond, 1] · scale.
   Eigen::MatrixXd spd(int n, double cond, double scale) {
     Eigen::HouseholderQR<Eigen::MatrixXd> qr(random_matrix(n, n));
     Eigen::MatrixXd Q = qr.householderQ();
@@ -74,7 +89,11 @@ class QpFactory {
     return 0.5 * (H + H.transpose());
   }
 
+  /// A feasible problem of n variables and m rows of `kind`, with its solution x_star.
+  /// @throws walkgen::invalid_argument unless n ≥ 1 and m ≥ 0.
   QpProblem make(int n, int m, QpKind kind) {
+    check_argument(n >= 1 && m >= 0, "QpFactory::make", "n >= 1 variables and m >= 0 rows",
+                   std::to_string(n) + " and " + std::to_string(m));
     const double inf = std::numeric_limits<double>::infinity();
     QpProblem p;
     p.kind = to_string(kind);
@@ -219,8 +238,11 @@ class QpFactory {
     return p;
   }
 
-  // A problem that has no feasible point; the contradiction is one of several kinds.
+  /// A problem of n variables and max(m, 3) rows that has no feasible point; the contradiction
+  /// is one of several kinds.
+  /// @throws walkgen::invalid_argument unless n ≥ 1.
   QpProblem make_infeasible(int n, int m) {
+    check_argument(n >= 1, "QpFactory::make_infeasible: n", "n >= 1 variables", n);
     const double inf = std::numeric_limits<double>::infinity();
     QpProblem p = make(n, std::max(m, 3), QpKind::generic);
     p.kind = "infeasible";
@@ -270,14 +292,27 @@ class QpFactory {
   std::mt19937 rng_;
 };
 
-// Relative KKT residuals of (x, y, z) for the problem, computed independently of the solver.
+/// Relative KKT residuals of (x, y, z) for a problem, computed independently of the solver.
 struct KktResiduals {
-  double stationarity = 0, primal = 0, complementarity = 0, dual_sign = 0;
+  double stationarity = 0;  ///< |H x + g + Aᵀ y + z|∞ over the largest of its terms (≥ 1)
+  double primal = 0;        ///< largest violation of a row or bound, over max(1, |A x|∞, |x|∞)
+  double complementarity = 0;  ///< largest |multiplier × distance to its side|, scaled
+  double dual_sign = 0;        ///< largest multiplier on a side that is open (±infinity)
+  /// The largest of the four.
   double max() const { return std::max({stationarity, primal, complementarity, dual_sign}); }
 };
 
+/// The KKT residuals of primal x and multipliers y (rows) and z (bounds) for problem p, with
+/// DenseQp's sign convention (y < 0 at an active lower side, y > 0 at an active upper side).
+/// @throws walkgen::invalid_argument when the sizes do not match the problem.
 inline KktResiduals kkt_residuals(const QpProblem& p, const Eigen::VectorXd& x,
                                   const Eigen::VectorXd& y, const Eigen::VectorXd& z) {
+  check_argument(x.size() == p.H.rows(), "walkgen::kkt_residuals: x", "one entry per variable",
+                 x.size());
+  check_argument(y.size() == p.A.rows(), "walkgen::kkt_residuals: y", "one entry per row",
+                 y.size());
+  check_argument(z.size() == p.H.rows(), "walkgen::kkt_residuals: z", "one entry per variable",
+                 z.size());
   KktResiduals r;
   const Eigen::VectorXd Hx = p.H * x;
   const Eigen::VectorXd Aty = p.A.transpose() * y;
@@ -314,4 +349,4 @@ inline KktResiduals kkt_residuals(const QpProblem& p, const Eigen::VectorXd& x,
   return r;
 }
 
-}  // namespace walkgen_test
+}  // namespace walkgen

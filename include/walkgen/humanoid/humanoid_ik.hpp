@@ -1,0 +1,75 @@
+#pragma once
+/// @file
+/// walkgen's humanoid (models/: 15 joints, Heicub-like) for inverse kinematics: its kinematic
+/// tree from the URDF, the standing posture of the MJCF keyframe "stand", and HumanoidIk, the
+/// Ceres whole-body IK sized for it, started from that posture. Used by the closed loop
+/// (walkgen/simulation/), the IK tests, bench_kinematics and examples/walking_joints.
+///
+/// Target walkgen::humanoid: needs the Ceres (walkgen::ceres) and URDF (walkgen::urdf) adapters;
+/// the model is found through walkgen::data_dir() (docs/design.md convention 21).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+
+#include "walkgen/ceres/inverse_kinematics.hpp"
+#include "walkgen/control/pattern_targets.hpp"
+#include "walkgen/core/data_dir.hpp"
+#include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/robot_io/urdf.hpp"
+
+namespace walkgen {
+
+/// Revolute joints of walkgen's humanoid.
+constexpr int kHumanoidJoints = 15;
+/// The Ceres whole-body IK of walkgen's humanoid.
+using HumanoidIk = CeresInverseKinematics<kHumanoidJoints>;
+
+/// The humanoid's kinematic tree, read from humanoid_urdf_path().
+/// @throws walkgen::invalid_argument when the URDF cannot be read or is malformed.
+inline KinematicTree<double> humanoid_tree() {
+  return kinematic_tree_from_urdf_file(humanoid_urdf_path());
+}
+
+/// The MJCF keyframe "stand": hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad (soles flat), every
+/// other joint 0.
+/// @throws walkgen::invalid_argument when `tree` lacks one of those joints.
+inline Eigen::VectorXd stand_configuration(const KinematicTree<double>& tree) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
+  for (const char* side : {"l_", "r_"}) {
+    const std::string s(side);
+    q[tree.joint_index(s + "hip_pitch")] = -0.5;
+    q[tree.joint_index(s + "knee")] = 1.0;
+    q[tree.joint_index(s + "ankle_pitch")] = -0.5;
+  }
+  return q;
+}
+
+/// The root position [m] that puts the standing robot's left sole at `left_sole_W` (upright
+/// base).
+inline Eigen::Vector3d stand_base_position(const KinematicTree<double>& tree,
+                                           const Eigen::Vector3d& left_sole_W) {
+  auto ws = tree.make_workspace();
+  tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+                          stand_configuration(tree), ws);
+  return left_sole_W - ws.position_W(tree.link_index("l_sole"));
+}
+
+/// Sets the standing posture as the initial guess of `ik` (HumanoidIk or any IK with
+/// tree() and set_initial_guess()), base upright turned by `yaw` [rad], left sole at
+/// `left_sole_W` [m].
+template <typename Ik>
+void start_standing(Ik& ik, const Eigen::Vector3d& left_sole_W, double yaw = 0.0) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d offset = stand_base_position(ik.tree(), Eigen::Vector3d::Zero());
+  ik.set_initial_guess(left_sole_W + R * offset, R, stand_configuration(ik.tree()));
+}
+
+/// Sets the standing posture under the first sample of a walk as the initial guess of `ik`.
+template <typename Ik>
+void start_walk(Ik& ik, const TrajectorySample<double>& first) {
+  const IkTarget t = ik_target(first);
+  start_standing(ik, t.left_foot.position_W, first.com_q[0]);
+}
+
+}  // namespace walkgen
