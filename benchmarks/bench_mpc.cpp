@@ -87,7 +87,7 @@ void BM_QpOfTick(benchmark::State& state) {
       state.SkipWithError("QP failed while capturing");
       return;
     }
-    const auto& w = mpc.workspace();
+    const auto& w = mpc.workspace().qp.problem();
     qps.push_back({w.H, w.g, w.lb, w.ub, w.l, w.u, w.A});
     mpc.advance();
   }

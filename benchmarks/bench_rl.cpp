@@ -8,9 +8,9 @@
 #include <cmath>
 #include <vector>
 
-#include "walkgen/torch/environment.hpp"
-#include "walkgen/torch/nmpc_environment.hpp"
-#include "walkgen/torch/parallel.hpp"
+#include "walkgen/learning/environment.hpp"
+#include "walkgen/learning/nmpc_environment.hpp"
+#include "walkgen/learning/step_pool.hpp"
 
 namespace {
 

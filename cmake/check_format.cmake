@@ -1,12 +1,12 @@
 # clang-format check (docs/design.md convention 19), script mode:
 #   cmake -DSOURCE_DIR=<repo root> [-DCLANG_FORMAT=<exe>] [-DFIX=ON] -P cmake/check_format.cmake
-# Checks every *.hpp/*.cpp/*.h under include/ tests/ benchmarks/ examples/ that git knows of (tracked,
-# or untracked but not ignored); outside a git checkout it globs those folders instead.
+# Checks every *.hpp/*.cpp/*.h under include/ src/ tests/ benchmarks/ examples/ that git knows
+# of (tracked, or untracked but not ignored); outside a git checkout it globs those folders instead.
 # With FIX=ON it rewrites the files in place. A missing clang-format is an error, not a skip.
 if(NOT SOURCE_DIR)
   get_filename_component(SOURCE_DIR "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 endif()
-set(_dirs include tests benchmarks examples)
+set(_dirs include src tests benchmarks examples)
 # C++ only: clang-format formats any file it is given as C++ (it once mangled a shell script).
 set(_extensions "hpp|cpp|h")
 

@@ -43,9 +43,9 @@
 #include <vector>
 
 #include "common/cli.hpp"
-#include "walkgen/torch/environment.hpp"
-#include "walkgen/torch/nmpc_environment.hpp"
-#include "walkgen/torch/parallel.hpp"
+#include "walkgen/learning/environment.hpp"
+#include "walkgen/learning/nmpc_environment.hpp"
+#include "walkgen/learning/step_pool.hpp"
 #include "walkgen/torch/ppo.hpp"
 #include "walkgen/torch/training.hpp"
 

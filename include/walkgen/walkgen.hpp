@@ -18,5 +18,5 @@
 #include "walkgen/mpc/settings.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
 #include "walkgen/qp/dense_qp.hpp"
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
 #include "walkgen/version.hpp"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -11,6 +12,8 @@
 #include <string>
 
 #include "support/derivatives.hpp"
+#include "support/enum_strings.hpp"
+#include "support/expect_error.hpp"
 #include "support/kinematics.hpp"
 #include "walkgen/control/pattern_targets.hpp"
 #include "walkgen/core/math.hpp"
@@ -102,6 +105,7 @@ TEST(CeresInverseKinematics, RoundTripOfRandomReachableTargets) {
     ASSERT_TRUE(within_limits(ik.q()));
     if (r.status == IkStatus::converged) {
       ASSERT_TRUE(r.applied);
+      EXPECT_STREQ(r.message, "");
       EXPECT_LE(r.com_error, 1e-6);
       EXPECT_LE(r.foot_position_error, 1e-6);
       EXPECT_LE(r.foot_yaw_error, 1e-6);
@@ -298,6 +302,7 @@ TEST(CeresInverseKinematics, NonFiniteTargetKeepsTheSolution) {
   target.com_W = Eigen::Vector3d(0.0, 0.0, std::nan(""));
   const walkgen::IkResult r = ik.solve(target);
   EXPECT_EQ(r.status, IkStatus::invalid_input);
+  EXPECT_NE(std::string(r.message).find("non-finite target"), std::string::npos) << r.message;
   EXPECT_FALSE(r.applied);
   EXPECT_EQ(r.runs, 0);
   EXPECT_EQ(ik.q(), q);
@@ -316,6 +321,7 @@ TEST(CeresInverseKinematics, UnreachableTargetKeepsTheSolution) {
   target.right_foot.position_W = Eigen::Vector3d(0.0, -0.5, 0.0);
   const walkgen::IkResult r = ik.solve(target);
   EXPECT_EQ(r.status, IkStatus::not_converged);
+  EXPECT_NE(std::string(r.message).find("tolerance"), std::string::npos) << r.message;
   EXPECT_FALSE(r.applied);
   EXPECT_EQ(r.runs, 2);
   EXPECT_GT(r.foot_position_error, 1e-3);
@@ -355,6 +361,26 @@ TEST(CeresInverseKinematics, BadInputThrows) {
   q[tree().joint_index("l_knee")] = -1.0;
   ik.set_initial_guess(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q);
   EXPECT_EQ(ik.q()[tree().joint_index("l_knee")], 0.0);
+}
+
+// validate(CeresIkSettings) names each field of its own and of IkResidualSettings.
+TEST(CeresInverseKinematics, SettingsAreValidatedNamingTheField) {
+  using S = walkgen::CeresIkSettings;
+  walkgen_test::expect_rejected<S>(
+      S(), {{[](S& s) { s.n_init = 0; }, {"CeresIkSettings.n_init", "at least 1", "0"}},
+            {[](S& s) { s.step_tol = -1.0; }, {"CeresIkSettings.step_tol", "> 0", "-1"}},
+            {[](S& s) { s.lambda = std::nan(""); }, {"CeresIkSettings.lambda", "nan"}},
+            {[](S& s) { s.num_steps = 0; }, {"CeresIkSettings.num_steps", "0"}},
+            {[](S& s) { s.com_weight = 0.0; }, {"IkResidualSettings.com_weight", "> 0", "0"}},
+            {[](S& s) { s.position_tolerance = 0.0; }, {"CeresIkSettings.position_tolerance"}},
+            {[](S& s) { s.orientation_tolerance = -1e-6; },
+             {"CeresIkSettings.orientation_tolerance", "-1e-06"}}});
+}
+
+TEST(CeresInverseKinematics, DerivativesStrings) {
+  walkgen_test::expect_enum_strings(std::array<walkgen::IkDerivatives, 2>{
+      walkgen::IkDerivatives::analytic, walkgen::IkDerivatives::automatic});
+  static_assert(to_string(walkgen::IkDerivatives::automatic)[0] == 'a');
 }
 
 }  // namespace

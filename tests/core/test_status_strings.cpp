@@ -1,6 +1,6 @@
-// to_string() of every status enum of the core library (the adapters' own enums are checked in
-// their tests with the same helper): constexpr, noexcept, the enumerator's snake_case name, each
-// name once, and "unknown" for a value out of range.
+// to_string() of every public enum of the core library, status enums and discrete choices alike
+// (the adapters' own enums are checked in their tests with the same helper): constexpr, noexcept,
+// the enumerator's snake_case name, each name once, and "unknown" for a value out of range.
 
 #include <gtest/gtest.h>
 
@@ -8,12 +8,16 @@
 #include <string>
 
 #include "support/enum_strings.hpp"
+#include "walkgen/control/go_to_target.hpp"
 #include "walkgen/control/walking_loop.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
+#include "walkgen/kinematics/kinematic_tree.hpp"
+#include "walkgen/mpc/walking_layout.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
 #include "walkgen/qp/dense_qp.hpp"
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
+#include "walkgen/scenarios/manufactured_qp.hpp"
 
 namespace {
 
@@ -21,11 +25,15 @@ using walkgen::CommandStatus;
 using walkgen::Foot;
 using walkgen::IkStatus;
 using walkgen::JointCommandStatus;
+using walkgen::JointType;
 using walkgen::LoopStatus;
 using walkgen::MpcStatus;
+using walkgen::PassSide;
+using walkgen::QpKind;
 using walkgen::QpStatus;
 using walkgen::RenderStatus;
 using walkgen::RobotStatus;
+using walkgen::ShiftRule;
 
 /// Every enumerator of each enum, in declaration order.
 template <typename Enum>
@@ -75,6 +83,26 @@ template <>
 struct Enumerators<Foot> {
   static constexpr std::array<Foot, 2> all = {Foot::left, Foot::right};
 };
+template <>
+struct Enumerators<ShiftRule> {
+  static constexpr std::array<ShiftRule, 3> all = {ShiftRule::per_sample, ShiftRule::per_step,
+                                                   ShiftRule::fixed};
+};
+template <>
+struct Enumerators<JointType> {
+  static constexpr std::array<JointType, 2> all = {JointType::revolute, JointType::fixed};
+};
+template <>
+struct Enumerators<QpKind> {
+  static constexpr std::array<QpKind, 5> all = {QpKind::generic, QpKind::degenerate,
+                                                QpKind::equalities, QpKind::many_bounds,
+                                                QpKind::parallel};
+};
+template <>
+struct Enumerators<PassSide> {
+  static constexpr std::array<PassSide, 4> all = {PassSide::toward_heading, PassSide::shorter,
+                                                  PassSide::left, PassSide::right};
+};
 
 // constexpr: usable where a constant expression is needed.
 static_assert(to_string(QpStatus::solved)[0] == 's');
@@ -86,6 +114,10 @@ static_assert(to_string(RobotStatus::fallen)[0] == 'f');
 static_assert(to_string(JointCommandStatus::rejected)[0] == 'r');
 static_assert(to_string(RenderStatus::unavailable)[0] == 'u');
 static_assert(to_string(Foot::right)[0] == 'r');
+static_assert(to_string(ShiftRule::per_step)[0] == 'p');
+static_assert(to_string(JointType::fixed)[0] == 'f');
+static_assert(to_string(PassSide::shorter)[0] == 's');
+static_assert(to_string(QpKind::many_bounds)[0] == 'm');
 
 template <typename Enum>
 class StatusStrings : public ::testing::Test {};
@@ -103,12 +135,17 @@ struct EnumName {
     if (std::is_same<Enum, JointCommandStatus>::value) return "JointCommandStatus";
     if (std::is_same<Enum, RenderStatus>::value) return "RenderStatus";
     if (std::is_same<Enum, Foot>::value) return "Foot";
+    if (std::is_same<Enum, ShiftRule>::value) return "ShiftRule";
+    if (std::is_same<Enum, JointType>::value) return "JointType";
+    if (std::is_same<Enum, PassSide>::value) return "PassSide";
+    if (std::is_same<Enum, QpKind>::value) return "QpKind";
     return "unnamed";
   }
 };
 
 using Enums = ::testing::Types<QpStatus, MpcStatus, CommandStatus, IkStatus, LoopStatus,
-                               RobotStatus, JointCommandStatus, RenderStatus, Foot>;
+                               RobotStatus, JointCommandStatus, RenderStatus, Foot, ShiftRule,
+                               JointType, PassSide, QpKind>;
 TYPED_TEST_SUITE(StatusStrings, Enums, EnumName);
 
 TYPED_TEST(StatusStrings, EveryEnumeratorHasItsOwnNameAndOutOfRangeIsUnknown) {
@@ -127,6 +164,10 @@ TEST(StatusStrings, NamesAreTheEnumerators) {
   EXPECT_STREQ(to_string(JointCommandStatus::rejected), "rejected");
   EXPECT_STREQ(to_string(RenderStatus::unavailable), "unavailable");
   EXPECT_STREQ(to_string(Foot::left), "left");
+  EXPECT_STREQ(to_string(ShiftRule::per_sample), "per_sample");
+  EXPECT_STREQ(to_string(JointType::revolute), "revolute");
+  EXPECT_STREQ(to_string(PassSide::toward_heading), "toward_heading");
+  EXPECT_STREQ(to_string(QpKind::many_bounds), "many_bounds");
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "fuzz/fuzz_support.hpp"
-#include "walkgen/robot_io/urdf.hpp"
+#include "walkgen/urdf/urdf_loader.hpp"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "fuzz/fuzz_support.hpp"
-#include "walkgen/robot_io/yaml_settings.hpp"
+#include "walkgen/yaml/settings_loader.hpp"
 
 namespace {
 

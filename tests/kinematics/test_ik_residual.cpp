@@ -16,7 +16,7 @@
 
 #include "support/derivatives.hpp"
 #include "support/kinematics.hpp"
-#include "walkgen/robot_io/urdf.hpp"
+#include "walkgen/urdf/urdf_loader.hpp"
 
 namespace {
 

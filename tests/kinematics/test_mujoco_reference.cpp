@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "support/kinematics.hpp"
-#include "walkgen/robot_io/urdf.hpp"
+#include "walkgen/urdf/urdf_loader.hpp"
 
 namespace {
 

@@ -142,12 +142,13 @@ TYPED_TEST(WalkingBlocks, ConstraintRowsAreTheDerivativesOfTheirValues) {
 // The QP's rows are the blocks' rows, and its H and g the sum of the cost terms'.
 TYPED_TEST(WalkingBlocks, TheQpIsTheSumOfTheBlocks) {
   const auto& model = this->mpc_->model();
-  const auto& w = this->mpc_->workspace();
+  const auto& ws = this->mpc_->workspace();
+  const auto& w = ws.qp.problem();  // the QP's data, owned by the solver
   const auto& L = model.layout();
-  const auto t = this->tick(w.iterate);
+  const auto t = this->tick(ws.iterate);
   RowMatrixXd J(L.num_rows(), L.num_vars());
   Eigen::VectorXd lb(L.num_rows()), ub(L.num_rows());
-  model.linearise(t, w.iterate, J, lb, ub);
+  model.linearise(t, ws.iterate, J, lb, ub);
   EXPECT_EQ(J, w.A);
   EXPECT_EQ(lb, w.lb);
   EXPECT_EQ(ub, w.ub);

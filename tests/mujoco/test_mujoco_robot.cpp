@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -13,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "support/enum_strings.hpp"
+#include "support/expect_error.hpp"
 #include "walkgen/core/math.hpp"
 
 namespace {
@@ -374,6 +377,37 @@ TEST(MujocoRobot, MovesMovableObjectsAndTexturesTexturedOnes) {
   EXPECT_GT(hi - lo, 40);
   EXPECT_NEAR(left.depth[std::size_t(100) * left.width + 160],
               1.45 - left.pose_W_C.translation().x(), 0.05);
+}
+
+// The settings that need no model are checked first (validate()), naming the field.
+TEST(MujocoRobot, SettingsAreValidatedNamingTheField) {
+  using S = MujocoRobotSettings;
+  walkgen::SceneObject box;
+  box.name = "box";
+  walkgen_test::expect_rejected<S>(
+      S(), {{[](S& s) { s.joint_names.clear(); }, {"MujocoRobotSettings.joint_names", "none"}},
+            {[](S& s) { s.fall_height_ratio = 1.5; },
+             {"MujocoRobotSettings.fall_height_ratio", "(0, 1)", "1.5"}},
+            {[](S& s) { s.fall_height_ratio = std::nan(""); },
+             {"MujocoRobotSettings.fall_height_ratio", "nan"}},
+            {[](S& s) { s.view_width = 0; }, {"MujocoRobotSettings.view_width", "[1, 16384]", "0"}},
+            {[](S& s) { s.view_height = 100000; }, {"MujocoRobotSettings.view_height", "100000"}},
+            {[box](S& s) {
+               s.objects = {box, box};
+               s.objects[1].name = "a b";
+             },
+             {"MujocoRobotSettings.objects: name", "'a b'"}},
+            {[box](S& s) {
+               s.objects = {box};
+               s.objects[0].rgb.x() = 2.0;
+             },
+             {"MujocoRobotSettings.objects: 'box' rgb", "[0, 1]"}}});
+}
+
+TEST(MujocoRobot, SceneShapeStrings) {
+  walkgen_test::expect_enum_strings(std::array<walkgen::SceneShape, 3>{
+      walkgen::SceneShape::box, walkgen::SceneShape::cylinder, walkgen::SceneShape::sphere});
+  static_assert(to_string(walkgen::SceneShape::sphere)[0] == 's');
 }
 
 }  // namespace

@@ -142,3 +142,23 @@ TEST(DepthObstacles, BadInputGivesClearErrors) {
       [&] { walkgen::obstacles_from_depth(cv::Mat(240, 320, CV_32F), kCamera, camera_pose(), s); },
       "max_depth");
 }
+
+TEST(DepthObstacles, SettingsAreValidatedNamingTheField) {
+  using S = walkgen::DepthObstacleSettings;
+  walkgen_test::expect_rejected<S>(
+      S(),
+      {{[](S& s) { s.min_depth = 0.0; }, {"DepthObstacleSettings.min_depth", "> 0", "0"}},
+       {[](S& s) { s.max_depth = 0.1; }, {"DepthObstacleSettings.max_depth", "min_depth", "0.1"}},
+       {[](S& s) { s.max_height = 0.05; },
+        {"DepthObstacleSettings.max_height", "floor_height", "0.05"}},
+       {[](S& s) { s.cell_size = std::nan(""); }, {"DepthObstacleSettings.cell_size", "nan"}},
+       {[](S& s) { s.cluster_gap = -0.1; }, {"DepthObstacleSettings.cluster_gap", ">= 0", "-0.1"}},
+       {[](S& s) { s.min_points = 2; }, {"DepthObstacleSettings.min_points", "at least 3", "2"}},
+       {[](S& s) { s.pixel_stride = 0; }, {"DepthObstacleSettings.pixel_stride", "0"}},
+       {[](S& s) { s.width_quantile = 0.5; },
+        {"DepthObstacleSettings.width_quantile", "[0, 0.5)", "0.5"}},
+       {[](S& s) { s.min_radius = -1.0; }, {"DepthObstacleSettings.min_radius", "-1"}},
+       {[](S& s) { s.margin = -0.2; }, {"DepthObstacleSettings.margin", "-0.2"}},
+       {[](S& s) { s.max_relative_step = -0.03; },
+        {"DepthObstacleSettings.max_relative_step", "-0.03"}}});
+}

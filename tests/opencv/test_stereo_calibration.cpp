@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include <walkgen/opencv/stereo_calibration.hpp>
 
 #include "opencv/data_dir.hpp"
+#include "support/enum_strings.hpp"
 #include "support/expect_error.hpp"
 #include "support/files.hpp"
 
@@ -84,6 +86,8 @@ class FileSizeLimit {
 TEST(StereoCalibration, LeftMonoMatchesOpenCvReference) {
   const std::vector<std::string> files = chessboard_files("left");
   const walkgen::MonoCalibration c = walkgen::calibrate_camera(read_all(files), {}, files);
+  EXPECT_EQ(c.status, walkgen::CalibrationStatus::ok);
+  EXPECT_STREQ(c.message, "");
   std::printf("left mono: RMS %.4f px, fx %.3f fy %.3f cx %.3f cy %.3f, %zu views\n", c.rms,
               c.camera_matrix.at<double>(0, 0), c.camera_matrix.at<double>(1, 1),
               c.camera_matrix.at<double>(0, 2), c.camera_matrix.at<double>(1, 2),
@@ -107,6 +111,9 @@ TEST(StereoCalibration, StereoPairAndYamlRoundTrip) {
   const std::vector<std::string> left = chessboard_files("left");
   const std::vector<std::string> right = chessboard_files("right");
   const walkgen::StereoCalibration c = walkgen::calibrate_stereo_files(left, right);
+  EXPECT_EQ(c.status, walkgen::CalibrationStatus::ok) << c.message;
+  EXPECT_EQ(c.left.status, walkgen::CalibrationStatus::ok);
+  EXPECT_EQ(c.right.status, walkgen::CalibrationStatus::ok);
   const double baseline = cv::norm(c.translation);
   std::printf(
       "stereo: RMS %.4f px, mean epipolar error %.4f px, |T| %.4f m (%.3f squares), f %.2f, "
@@ -352,4 +359,29 @@ TEST(StereoCalibration, AFailedSaveLeavesThePreviousFile) {
   expect_invalid_argument(
       [&] { walkgen::save_stereo_calibration(good, (folder / "nowhere" / "s.yml").string()); },
       {"nowhere", "missing"});
+}
+
+TEST(StereoCalibration, SettingsAreValidatedNamingTheField) {
+  using B = walkgen::ChessboardSettings;
+  walkgen_test::expect_rejected<B>(
+      B(), {{[](B& b) { b.columns = 1; }, {"ChessboardSettings.columns", "at least 2", "1"}},
+            {[](B& b) { b.rows = 0; }, {"ChessboardSettings.rows", "at least 2", "0"}},
+            {[](B& b) { b.square_size = -0.025; }, {"ChessboardSettings.square_size", "-0.025"}},
+            {[](B& b) { b.subpixel_half_window = 0; },
+             {"ChessboardSettings.subpixel_half_window", ">= 1", "0"}}});
+  using C = walkgen::CalibrationSettings;
+  walkgen_test::expect_rejected<C>(
+      C(), {{[](C& c) { c.board.rows = 1; }, {"ChessboardSettings.rows", "1"}},
+            {[](C& c) { c.rectify_alpha = 1.5; },
+             {"CalibrationSettings.rectify_alpha", "[0, 1]", "1.5"}},
+            {[](C& c) { c.rectify_alpha = -0.5; }, {"CalibrationSettings.rectify_alpha", "-0.5"}}});
+  walkgen::CalibrationSettings zero;  // both ends of OpenCV's alpha are valid
+  zero.rectify_alpha = 0.0;
+  EXPECT_NO_THROW(walkgen::validate(zero));
+}
+
+TEST(StereoCalibration, StatusStrings) {
+  walkgen_test::expect_enum_strings(std::array<walkgen::CalibrationStatus, 2>{
+      walkgen::CalibrationStatus::ok, walkgen::CalibrationStatus::non_finite});
+  static_assert(to_string(walkgen::CalibrationStatus::non_finite)[0] == 'n');
 }

@@ -3,6 +3,7 @@
 // and Cones (quarter size); depth through Q; clear errors for bad input.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -10,6 +11,7 @@
 #include <walkgen/opencv/stereo_depth.hpp>
 
 #include "opencv/data_dir.hpp"
+#include "support/enum_strings.hpp"
 #include "support/expect_error.hpp"
 
 namespace {
@@ -61,6 +63,8 @@ TEST(StereoDepth, AloeAt320PixelsWide) {
   s.num_disparities = 64;  // Aloe's disparities reach 52.8 px at this size
   walkgen::StereoDepth depth(s, some_q());
   const walkgen::StereoDepthFrame& f = depth.compute(a.left, a.right);
+  EXPECT_EQ(f.status, walkgen::DepthStatus::ok);
+  EXPECT_STREQ(f.message, "");
   const Score wls = score_disparity(f.disparity, a.truth);
   cv::Mat raw;
   f.disparity_left.convertTo(raw, CV_32F, 1.0 / 16.0);
@@ -187,6 +191,39 @@ TEST(StereoDepth, BadInputGivesClearErrors) {
                                         {"baseline"});
   walkgen_test::expect_invalid_argument([&] { walkgen::pinhole_from_fovy(320, 240, 4.0); },
                                         {"fovy"});
+}
+
+// Block matching finds no texture in a blank pair, so no depth anywhere: a status, not an
+// exception. (The WLS filter would fill the whole image from its surroundings, see
+// StereoDepthSettings::min_confidence.)
+TEST(StereoDepth, ATexturelessPairHasNoDepth) {
+  walkgen::StereoDepthSettings block_matching;
+  block_matching.wls = false;
+  walkgen::StereoDepth depth(block_matching, some_q());
+  const cv::Mat blank(240, 320, CV_8UC3, cv::Scalar(90, 90, 90));
+  const walkgen::StereoDepthFrame& f = depth.compute(blank, blank);
+  EXPECT_EQ(cv::countNonZero(f.depth), 0);
+  EXPECT_EQ(f.status, walkgen::DepthStatus::no_depth);
+  EXPECT_NE(std::string(f.message).find("no pixel has a depth"), std::string::npos) << f.message;
+  walkgen_test::expect_enum_strings(std::array<walkgen::DepthStatus, 2>{
+      walkgen::DepthStatus::ok, walkgen::DepthStatus::no_depth});
+  static_assert(to_string(walkgen::DepthStatus::no_depth)[0] == 'n');
+}
+
+TEST(StereoDepth, SettingsAreValidatedNamingTheField) {
+  using S = walkgen::StereoDepthSettings;
+  walkgen_test::expect_rejected<S>(
+      S(),
+      {{[](S& s) { s.block_size = 3; }, {"StereoDepthSettings.block_size", "5..255", "3"}},
+       {[](S& s) { s.num_disparities = 0; }, {"StereoDepthSettings.num_disparities", "16", "0"}},
+       {[](S& s) { s.lambda = -1.0; }, {"StereoDepthSettings.lambda", "> 0", "-1"}},
+       {[](S& s) { s.sigma = std::nan(""); }, {"StereoDepthSettings.sigma", "nan"}},
+       {[](S& s) { s.left_right_threshold = -1.5; },
+        {"StereoDepthSettings.left_right_threshold", ">= 0", "-1.5"}},
+       {[](S& s) { s.min_confidence = -1.0; }, {"StereoDepthSettings.min_confidence", "-1"}},
+       {[](S& s) { s.prefilter_cap = 64; }, {"StereoDepthSettings.prefilter_cap", "1..63", "64"}},
+       {[](S& s) { s.texture_threshold = -1; }, {"StereoDepthSettings.texture_threshold", "-1"}},
+       {[](S& s) { s.uniqueness_ratio = -2; }, {"StereoDepthSettings.uniqueness_ratio", "-2"}}});
 }
 
 TEST(StereoDepth, RectifiesWithACalibration) {

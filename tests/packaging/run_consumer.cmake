@@ -2,6 +2,9 @@
 #
 # Install the walkgen build tree into a fresh prefix:
 #   -DINSTALL_FROM=<walkgen build dir> -DPREFIX=<prefix> [-DCONFIG=<config>]
+#   With -DCONFIGURE_FROM=<walkgen source>, INSTALL_FROM is first configured afresh from that source
+#   (with -DGENERATOR and the optional compiler settings below, as a consumer is, plus
+#   -DCONFIGURE_ARGS=<-DNAME=VALUE|...>) and built.
 #
 # Configure, build and run a consumer project (from a fresh build dir):
 #   -DSOURCE=<consumer dir> -DBUILD=<its build dir> -DGENERATOR=<generator> [-DCONFIG=<config>]
@@ -19,15 +22,41 @@ function(_step what)
   endif()
 endfunction()
 
+# This build's settings, forwarded to every configure as -D<cache variable>=<value> where given.
+set(_build_settings CONFIG:CMAKE_BUILD_TYPE CXX_COMPILER:CMAKE_CXX_COMPILER
+                    CXX_FLAGS:CMAKE_CXX_FLAGS MAKE_PROGRAM:CMAKE_MAKE_PROGRAM EIGEN3_DIR:Eigen3_DIR)
+# Sets `out` to -D<cache variable>=<value> for each <variable>:<cache variable> that was given.
+function(_forward out)
+  set(_args "")
+  foreach(_pair IN LISTS ARGN)
+    string(REPLACE ":" ";" _pair "${_pair}")
+    list(GET _pair 0 _in)
+    list(GET _pair 1 _cache)
+    if(NOT "${${_in}}" STREQUAL "")
+      list(APPEND _args "-D${_cache}=${${_in}}")
+    endif()
+  endforeach()
+  set(${out} ${_args} PARENT_SCOPE)
+endfunction()
+
+set(_config_args "")
+if(CONFIG)
+  set(_config_args --config "${CONFIG}")
+endif()
+
 # --- Install mode --------------------------------------------------------------------------------
 if(DEFINED INSTALL_FROM)
   if(NOT PREFIX)
     message(FATAL_ERROR "run_consumer.cmake: -DPREFIX=... is required with -DINSTALL_FROM")
   endif()
   file(REMOVE_RECURSE "${PREFIX}")
-  set(_config_args "")
-  if(CONFIG)
-    set(_config_args --config "${CONFIG}")
+  if(CONFIGURE_FROM)
+    file(REMOVE_RECURSE "${INSTALL_FROM}")
+    _forward(_forwarded ${_build_settings})
+    string(REPLACE "|" ";" _extra "${CONFIGURE_ARGS}")
+    _step("configure ${CONFIGURE_FROM} into ${INSTALL_FROM}" "${CMAKE_COMMAND}"
+          -S "${CONFIGURE_FROM}" -B "${INSTALL_FROM}" -G "${GENERATOR}" ${_forwarded} ${_extra})
+    _step("build ${INSTALL_FROM}" "${CMAKE_COMMAND}" --build "${INSTALL_FROM}" ${_config_args})
   endif()
   _step("install ${INSTALL_FROM} into ${PREFIX}"
         "${CMAKE_COMMAND}" --install "${INSTALL_FROM}" --prefix "${PREFIX}" ${_config_args})
@@ -50,18 +79,10 @@ if(NOT PREFIX AND NOT WALKGEN_SOURCE_DIR)
   message(FATAL_ERROR "run_consumer.cmake: pass -DPREFIX=... or -DWALKGEN_SOURCE_DIR=...")
 endif()
 
-set(_args -S "${SOURCE}" -B "${BUILD}" -G "${GENERATOR}")
-foreach(_pair "PREFIX;CMAKE_PREFIX_PATH" "WALKGEN_SOURCE_DIR;WALKGEN_SOURCE_DIR"
-              "CONFIG;CMAKE_BUILD_TYPE" "CXX_COMPILER;CMAKE_CXX_COMPILER"
-              "CXX_FLAGS;CMAKE_CXX_FLAGS" "MAKE_PROGRAM;CMAKE_MAKE_PROGRAM"
-              "EIGEN3_DIR;Eigen3_DIR" "COMPONENT;WALKGEN_COMPONENT"
-              "EXPECTED_DATA_DIR;EXPECTED_DATA_DIR")
-  list(GET _pair 0 _in)
-  list(GET _pair 1 _cache)
-  if(NOT "${${_in}}" STREQUAL "")
-    list(APPEND _args "-D${_cache}=${${_in}}")
-  endif()
-endforeach()
+_forward(_forwarded ${_build_settings} PREFIX:CMAKE_PREFIX_PATH
+         WALKGEN_SOURCE_DIR:WALKGEN_SOURCE_DIR COMPONENT:WALKGEN_COMPONENT
+         EXPECTED_DATA_DIR:EXPECTED_DATA_DIR)
+set(_args -S "${SOURCE}" -B "${BUILD}" -G "${GENERATOR}" ${_forwarded})
 
 file(REMOVE_RECURSE "${BUILD}")
 
@@ -98,10 +119,6 @@ if(PREFIX)
   endif()
 endif()
 
-set(_config_args "")
-if(CONFIG)
-  set(_config_args --config "${CONFIG}")
-endif()
 _step("build ${BUILD}" "${CMAKE_COMMAND}" --build "${BUILD}" ${_config_args})
 
 # Single-config generators put the program in BUILD, multi-config ones in BUILD/<config>.

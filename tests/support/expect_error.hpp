@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
@@ -20,6 +22,19 @@ void expect_invalid_argument(F f, const std::vector<std::string>& parts) {
       EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
           << "message '" << e.what() << "' lacks '" << p << "'";
     }
+  }
+}
+
+/// validate() (by ADL) accepts `good`, rejects each case's copy naming field, range and value.
+template <typename S>
+void expect_rejected(
+    const S& good,
+    const std::vector<std::pair<std::function<void(S&)>, std::vector<std::string>>>& cases) {
+  EXPECT_NO_THROW(validate(good));
+  for (const auto& [set, parts] : cases) {
+    S s = good;
+    set(s);
+    expect_invalid_argument([&] { validate(s); }, parts);
   }
 }
 

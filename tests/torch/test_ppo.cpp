@@ -1,7 +1,8 @@
 // Tests of walkgen::torch (thesis §4.2, §11.2): GAE (eq. 4.15) against a hand computation, the
 // Gaussian policy's log-probability and entropy (eq. 11.2), TorchScript save/load (also from
-// Python where /usr/bin/python3 has torch), the environments, and a short seeded PPO run on the
-// benchmarking environment of §11.2.1 that must learn.
+// Python where /usr/bin/python3 has torch), and a short seeded PPO run on the benchmarking
+// environment of §11.2.1 that must learn. The environments themselves (core only) are tested in
+// tests/learning/test_environments.cpp.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <torch/torch.h>
@@ -14,31 +15,23 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "support/enum_strings.hpp"
+#include "support/expect_error.hpp"
 #include "walkgen/core/math.hpp"
-#include "walkgen/torch/environment.hpp"
-#include "walkgen/torch/nmpc_environment.hpp"
-#include "walkgen/torch/parallel.hpp"
+#include "walkgen/learning/environment.hpp"
 #include "walkgen/torch/ppo.hpp"
 #include "walkgen/torch/training.hpp"
+#include "walkgen/torch/velocity_network.hpp"
 
 namespace {
 
 std::string temp_path(const std::string& name) {
   return std::string(WALKGEN_TORCH_TEST_DIR) + "/" + name;
-}
-
-// The status of an environment step follows the status enums' to_string() convention
-// (tests/core/test_status_strings.cpp).
-TEST(EpisodeEnd, EveryEnumeratorHasItsOwnNameAndOutOfRangeIsUnknown) {
-  using walkgen::EpisodeEnd;
-  walkgen_test::expect_enum_strings(std::array<EpisodeEnd, 4>{
-      EpisodeEnd::none, EpisodeEnd::success, EpisodeEnd::failure, EpisodeEnd::truncated});
-  static_assert(to_string(EpisodeEnd::truncated)[0] == 't');
 }
 
 TEST(Gae, MatchesHandComputation) {
@@ -230,110 +223,75 @@ TEST(TorchPpo, RejectsBadSettings) {
   EXPECT_THROW(walkgen::TorchPpo(0, 2, {}), walkgen::invalid_argument);
 }
 
-TEST(PointGoalEnv, RewardsAndEnds) {
-  walkgen::PointGoalEnv env;
-  env.reset(Eigen::Vector2d(1.0, 0.0));
-  float obs[4];
-  env.observe(obs);
-  EXPECT_EQ(obs[2], 1.0f);
-  const float right[2] = {1.0f, 0.0f};
-  walkgen::EnvStep r = env.step(right);
-  EXPECT_NEAR(r.reward, 0.1, 1e-12);  // progress
-  EXPECT_EQ(r.end, walkgen::EpisodeEnd::none);
-  for (int k = 0; k < 4; ++k) r = env.step(right);  // at 0.5: 0.5 away
-  EXPECT_EQ(r.end, walkgen::EpisodeEnd::none);
-  r = env.step(right);  // 0.4 away: not < 0.4
-  r = env.step(right);  // 0.3 away: won
-  EXPECT_EQ(r.end, walkgen::EpisodeEnd::success);
-  EXPECT_NEAR(r.reward, 0.1 + 10.0, 1e-9);
-  env.reset(Eigen::Vector2d(9.95, 0.0));
-  const float away[2] = {-5.0f, 0.0f};  // clipped to −1
-  r = env.step(away);
-  EXPECT_EQ(r.end, walkgen::EpisodeEnd::failure);
-  EXPECT_NEAR(r.reward, -0.1 - 10.0, 1e-9);
-  EXPECT_NEAR(env.agent().x(), -0.1, 1e-12);
+TEST(TorchPpo, SettingsAreValidatedNamingTheField) {
+  using S = walkgen::PpoSettings;
+  walkgen_test::expect_rejected<S>(
+      S(), {{[](S& s) {
+               s.actor_hidden = {64, 0};
+             },
+             {"PpoSettings.actor_hidden", ">= 1", "0"}},
+            {[](S& s) { s.critic_hidden = {-3}; }, {"PpoSettings.critic_hidden", "-3"}},
+            {[](S& s) { s.activation = static_cast<walkgen::TorchActivation>(7); },
+             {"PpoSettings.activation", "relu (0) or tanh (1)", "7"}},
+            {[](S& s) { s.initial_std = 0.0; }, {"PpoSettings.initial_std", "> 0", "0"}},
+            {[](S& s) { s.learning_rate = std::nan(""); }, {"PpoSettings.learning_rate", "nan"}},
+            {[](S& s) { s.gamma = 1.5; }, {"PpoSettings.gamma", "(0, 1]", "1.5"}},
+            {[](S& s) { s.lambda = -0.5; }, {"PpoSettings.lambda", "[0, 1]", "-0.5"}},
+            {[](S& s) { s.clip = 0.0; }, {"PpoSettings.clip", "> 0"}},
+            {[](S& s) { s.value_coef = -1.0; }, {"PpoSettings.value_coef", ">= 0", "-1"}},
+            {[](S& s) { s.entropy_coef = std::numeric_limits<double>::infinity(); },
+             {"PpoSettings.entropy_coef", "inf"}},
+            {[](S& s) { s.epochs = 0; }, {"PpoSettings.epochs", "at least 1", "0"}},
+            {[](S& s) { s.minibatch = -1; }, {"PpoSettings.minibatch", "-1"}},
+            {[](S& s) { s.reward_scale = 0.0; }, {"PpoSettings.reward_scale", "> 0"}}});
+  using V = walkgen::VelocityNetworkSettings;
+  walkgen_test::expect_rejected<V>(
+      V(), {{[](V& v) { v.max_command.x() = std::nan(""); },
+             {"VelocityNetworkSettings.max_command", "finite"}},
+            {[](V& v) { v.disparity_scale = 0.0; },
+             {"VelocityNetworkSettings.disparity_scale", "> 0", "0"}},
+            {[](V& v) { v.block = 0; }, {"VelocityNetworkSettings.block", ">= 1", "0"}}});
 }
 
-TEST(StepPool, RunsEveryIndexOnceAndRethrows) {
-  walkgen::StepPool pool(2);
-  std::vector<int> hits(101, 0);
-  for (int rep = 0; rep < 50; ++rep) pool.run(101, [&](int i) { ++hits[i]; });
-  for (int h : hits) EXPECT_EQ(h, 50);
-  EXPECT_THROW(pool.run(4,
-                        [](int i) {
-                          if (i == 3) throw std::runtime_error("x");
-                        }),
-               std::runtime_error);
-  pool.run(3, [&](int i) { hits[i] = -1; });  // usable after an exception
-  EXPECT_EQ(hits[2], -1);
-  EXPECT_THROW(walkgen::StepPool(0), walkgen::invalid_argument);
+TEST(TorchPpo, EnumStrings) {
+  walkgen_test::expect_enum_strings(std::array<walkgen::TorchActivation, 2>{
+      walkgen::TorchActivation::relu, walkgen::TorchActivation::tanh});
+  walkgen_test::expect_enum_strings(std::array<walkgen::PpoUpdateStatus, 2>{
+      walkgen::PpoUpdateStatus::updated, walkgen::PpoUpdateStatus::kl_stopped});
+  static_assert(to_string(walkgen::TorchActivation::tanh)[0] == 't');
+  static_assert(to_string(walkgen::PpoUpdateStatus::kl_stopped)[0] == 'k');
 }
 
-TEST(NmpcGoalEnv, StateIsTheGoalInTheRobotFrame) {
-  walkgen::NmpcGoalEnv<16> env({}, 5);
-  walkgen::NmpcGoalTask task;
-  task.goal = Eigen::Vector2d(-1.0, 0.5);
-  env.reset(task);
-  float obs[2];
-  env.observe(obs);
-  EXPECT_NEAR(obs[0], -1.0 - env.position().x(), 1e-6);
-  EXPECT_NEAR(obs[1], 0.5 - env.position().y(), 1e-6);
-  // Turning in place (v = 0, ω = max) for 2 s: the goal rotates by −ω t in the robot frame,
-  // the commands are accepted (|c| < max_command) and every QP solves.
-  const float turn[2] = {0.0f, 1.0f};
-  for (int k = 0; k < 10; ++k) {
-    const walkgen::EnvStep r = env.step(turn);
-    ASSERT_EQ(r.end, walkgen::EpisodeEnd::none);
-    EXPECT_EQ(env.mpc().result().last_command, walkgen::CommandStatus::accepted);
+// An update says how it ended: every epoch's minibatches (updated), or stopped at the first
+// minibatch whose KL estimate exceeds target_kl (kl_stopped), here at once: the rollout's log
+// probabilities are 1 below the policy's, a KL estimate of e − 2 ≈ 0.72.
+TEST(TorchPpo, UpdateReportsHowItEnded) {
+  walkgen::PpoSettings s;
+  s.epochs = 2;
+  s.minibatch = 4;
+  for (const double target_kl : {0.0, 0.1}) {
+    s.target_kl = target_kl;
+    walkgen::TorchPpo ppo(4, 2, s);
+    walkgen::PpoRollout r;
+    r.resize(8, 2, 4, 2);
+    for (std::size_t i = 0; i < r.observations.size(); ++i) {
+      r.observations[i] = 0.1f * static_cast<float>(i % 7);
+    }
+    ppo.act(r.observations.data(), 16, false, r.actions.data(), r.log_probs.data(),
+            r.values.data());
+    for (float& lp : r.log_probs) lp -= 1.0f;
+    for (std::size_t i = 0; i < r.rewards.size(); ++i) r.rewards[i] = static_cast<float>(i % 3);
+    const walkgen::PpoUpdateResult u = ppo.update(r);
+    if (target_kl == 0.0) {
+      EXPECT_EQ(u.status, walkgen::PpoUpdateStatus::updated);
+      EXPECT_STREQ(u.message, "");
+      EXPECT_EQ(u.steps, 8);  // 2 epochs of 16 samples in minibatches of 4
+    } else {
+      EXPECT_EQ(u.status, walkgen::PpoUpdateStatus::kl_stopped);
+      EXPECT_NE(std::string(u.message).find("target_kl"), std::string::npos) << u.message;
+      EXPECT_EQ(u.steps, 0);
+    }
   }
-  EXPECT_GT(env.heading(), 0.3);
-  const Eigen::Vector3d c = env.command_of(turn);
-  EXPECT_LT(c[2], env.settings().walking.max_command[2]);
-  EXPECT_GT(c[2], 0.99 * env.settings().walking.max_command[2]);
-  const double q = env.heading();
-  const Eigen::Vector2d d = task.goal - env.position();
-  env.observe(obs);
-  EXPECT_NEAR(obs[0], std::cos(q) * d.x() + std::sin(q) * d.y(), 1e-5);
-  EXPECT_NEAR(obs[1], -std::sin(q) * d.x() + std::cos(q) * d.y(), 1e-5);
-}
-
-TEST(NmpcGoalEnv, WalkingToAGoalSucceedsWithTheBonus) {
-  walkgen::NmpcGoalEnv<16> env({}, 5);
-  walkgen::NmpcGoalTask task;
-  task.goal = Eigen::Vector2d(0.8, 0.0);
-  env.reset(task);
-  const float forward[2] = {1.0f, 0.0f};
-  walkgen::EnvStep r;
-  double total = 0.0;
-  for (int k = 0; k < env.settings().max_steps && !r.done(); ++k) {
-    r = env.step(forward);
-    total += r.reward;
-  }
-  EXPECT_EQ(r.end, walkgen::EpisodeEnd::success);
-  EXPECT_LT(env.distance(), env.settings().success_radius);
-  // ≈ w_goal · (0.8 − 0.2) + 100 − the time penalty
-  EXPECT_GT(total, 6e3 * 0.55 + 100 - 200);
-  EXPECT_LT(total, 6e3 * 0.8 + 100);
-}
-
-TEST(NmpcGoalEnv, ObstaclesAreInTheStateAndKeptOutOfByTheFootsteps) {
-  walkgen::NmpcGoalSettings s;
-  s.obstacles = 1;
-  walkgen::NmpcGoalEnv<16> env(s, 9);
-  EXPECT_EQ(env.observation_size(), 5);
-  walkgen::NmpcGoalTask task;
-  task.goal = Eigen::Vector2d(2.0, 0.0);
-  task.obstacles.push_back({1.0, 0.05, 0.15, 0.15});
-  env.reset(task);
-  float obs[5];
-  env.observe(obs);
-  EXPECT_NEAR(obs[4], 0.3f, 1e-6);
-  const float forward[2] = {1.0f, 0.0f};
-  for (int k = 0; k < 60; ++k)
-    if (env.step(forward).done()) break;
-  EXPECT_GE(env.min_obstacle_clearance(), 0.15 - 2e-3);  // the margin, up to the SQP tolerance
-  task.obstacles.clear();
-  EXPECT_THROW(env.reset(task), walkgen::invalid_argument);
 }
 
 // Thesis §11.2.1, shortened: 20 epochs of 8192 steps, seeded. Learning is asserted as a rise of

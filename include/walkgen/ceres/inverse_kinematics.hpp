@@ -52,6 +52,17 @@ enum class IkDerivatives {
   automatic,
 };
 
+/// "analytic" or "automatic", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(IkDerivatives derivatives) noexcept {
+  switch (derivatives) {
+    case IkDerivatives::analytic:
+      return "analytic";
+    case IkDerivatives::automatic:
+      return "automatic";
+  }
+  return "unknown";
+}
+
 /// Settings of CeresInverseKinematics: the residual's (IkResidualSettings: body points, links,
 /// weights), the keys of thesis Table 6.2 and their mapping onto Ceres, and the convergence test.
 struct CeresIkSettings : IkResidualSettings {
@@ -196,7 +207,10 @@ class CeresInverseKinematics {
   /// is updated; otherwise it is kept and the status says why.
   [[nodiscard]] IkResult solve(const IkTarget& target) {
     IkResult result;
-    if (!target.all_finite()) return result;  // invalid_input
+    if (!target.all_finite()) {
+      result.message = "a non-finite target: nothing was solved, the previous solution is kept";
+      return result;  // invalid_input
+    }
     target_ = target;
     const int runs = warm_ ? 1 : settings_.n_init;
     IkResult best;
@@ -228,6 +242,7 @@ class CeresInverseKinematics {
     }
     if (best.status != IkStatus::converged) {
       best.status = IkStatus::not_converged;
+      best.message = "an error above its tolerance after every run: the previous solution is kept";
       warm_radius_ = 1.0 / settings_.lambda;
     }
     best.iterations = result.iterations;

@@ -39,6 +39,22 @@ enum class PassSide {
   right,  ///< always on the obstacle's right
 };
 
+/// The enumerator's name ("toward_heading", ...), e.g. for logs; "unknown" for a value out of
+/// range.
+constexpr const char* to_string(PassSide side) noexcept {
+  switch (side) {
+    case PassSide::toward_heading:
+      return "toward_heading";
+    case PassSide::shorter:
+      return "shorter";
+    case PassSide::left:
+      return "left";
+    case PassSide::right:
+      return "right";
+  }
+  return "unknown";
+}
+
 /// Settings of GoToTarget. Lengths [m], angles [rad].
 struct GoToTargetSettings {
   double stop_distance = 0.2;        ///< reached when the robot is this close to the target
@@ -60,6 +76,27 @@ struct GoToTargetSettings {
   /// The side to pass a blocking obstacle on (decided when it starts blocking, then kept).
   PassSide pass_side = PassSide::toward_heading;
 };
+
+/// Checks GoToTarget's settings (its constructor calls this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const GoToTargetSettings& s) {
+  check_positive("GoToTargetSettings.stop_distance", s.stop_distance);
+  check_positive("GoToTargetSettings.slow_down_distance", s.slow_down_distance);
+  check_positive("GoToTargetSettings.heading_gain", s.heading_gain);
+  check_positive("GoToTargetSettings.turn_in_place_angle", s.turn_in_place_angle);
+  check_argument(s.min_speed_fraction >= 0.0 && s.min_speed_fraction <= 1.0,
+                 "GoToTargetSettings.min_speed_fraction", "a fraction in [0, 1]",
+                 s.min_speed_fraction);
+  check_argument(s.clearance >= 0.0, "GoToTargetSettings.clearance", "a length >= 0", s.clearance);
+  check_argument(s.max_aim_off_target > 0.0 && s.max_aim_off_target <= kPi,
+                 "GoToTargetSettings.max_aim_off_target", "an angle in (0, π]",
+                 s.max_aim_off_target);
+  check_argument(s.aim_limit_opens_within >= 0.0 && std::isfinite(s.aim_limit_opens_within),
+                 "GoToTargetSettings.aim_limit_opens_within", "a length >= 0",
+                 s.aim_limit_opens_within);
+  check_argument(s.command_fraction > 0.0 && s.command_fraction <= 1.0,
+                 "GoToTargetSettings.command_fraction", "a fraction in (0, 1]", s.command_fraction);
+}
 
 /// The planar pose of the robot: position [m] and heading [rad] in the world frame.
 struct PlanarPose {
@@ -99,24 +136,7 @@ class GoToTarget {
                      "GoToTarget: obstacle", "finite centre, radius > 0, margin >= 0",
                      "NaN, inf or out of range");
     }
-    check_positive("GoToTargetSettings.stop_distance", s_.stop_distance);
-    check_positive("GoToTargetSettings.slow_down_distance", s_.slow_down_distance);
-    check_positive("GoToTargetSettings.heading_gain", s_.heading_gain);
-    check_positive("GoToTargetSettings.turn_in_place_angle", s_.turn_in_place_angle);
-    check_argument(s_.min_speed_fraction >= 0.0 && s_.min_speed_fraction <= 1.0,
-                   "GoToTargetSettings.min_speed_fraction", "a fraction in [0, 1]",
-                   s_.min_speed_fraction);
-    check_argument(s_.clearance >= 0.0, "GoToTargetSettings.clearance", "a length >= 0",
-                   s_.clearance);
-    check_argument(s_.max_aim_off_target > 0.0 && s_.max_aim_off_target <= kPi,
-                   "GoToTargetSettings.max_aim_off_target", "an angle in (0, π]",
-                   s_.max_aim_off_target);
-    check_argument(s_.aim_limit_opens_within >= 0.0 && std::isfinite(s_.aim_limit_opens_within),
-                   "GoToTargetSettings.aim_limit_opens_within", "a length >= 0",
-                   s_.aim_limit_opens_within);
-    check_argument(s_.command_fraction > 0.0 && s_.command_fraction <= 1.0,
-                   "GoToTargetSettings.command_fraction", "a fraction in (0, 1]",
-                   s_.command_fraction);
+    validate(s_);
   }
 
   /// The command for a robot at `pose` (for a walking robot a steady estimate such as the

@@ -41,7 +41,7 @@
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
 
 namespace walkgen {
 
@@ -95,6 +95,16 @@ struct WalkingLoopSettings {
   double transfer_time = 2.0;
 };
 
+/// Checks the loop's own settings (the sole and sensor links are checked against the IK's tree
+/// by WalkingLoop's constructor, which calls this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const WalkingLoopSettings& s) {
+  check_argument(s.feedback_gain > 0.0 && s.feedback_gain <= 1.0,
+                 "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]", s.feedback_gain);
+  check_argument(std::isfinite(s.transfer_time) && s.transfer_time >= 0.0,
+                 "WalkingLoopSettings.transfer_time", "a duration >= 0 [s]", s.transfer_time);
+}
+
 /// One command period of the loop: what was planned and what was measured after it.
 struct LoopSample {
   TrajectorySample<double> plan;  ///< the interpolated pattern (CoM, ZMP, feet), world frame
@@ -121,7 +131,9 @@ struct LoopTick {
   bool fed_back = false;
   /// Measured − planned CoM position at the feedback of this tick [m] (zero without one).
   Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
-  std::string message;  ///< the robot's message when it stopped
+  /// Why, unless status is ok: the robot's message when it stopped, the NMPC's (MpcResult::
+  /// message) when its QP failed or its plan did not converge.
+  std::string message;
 };
 
 /// The loop of figure 6.1 around a Robot and an inverse kinematics `Ik` with
@@ -144,11 +156,7 @@ class WalkingLoop {
         ws_(tree_.make_workspace()),
         mpc_(settings),
         interp_(interpolation_settings(settings)) {
-    check_argument(loop_.feedback_gain > 0.0 && loop_.feedback_gain <= 1.0,
-                   "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]",
-                   loop_.feedback_gain);
-    check_argument(std::isfinite(loop_.transfer_time) && loop_.transfer_time >= 0.0,
-                   "WalkingLoopSettings.transfer_time", "a duration >= 0 [s]", loop_.transfer_time);
+    validate(loop_);
     const double ratio = settings.t_feedback / settings.t;
     check_argument(
         std::isfinite(ratio) && ratio >= 1.0 - 1e-9 && std::abs(ratio - std::round(ratio)) < 1e-6,
@@ -240,7 +248,9 @@ class WalkingLoop {
       return tick_;
     }
     if (loop_.com_feedback && ticks_ > 0 && ticks_ % feedback_every_ == 0) feed_back();
-    tick_.mpc = mpc_.solve().status;
+    const MpcResult<double>& solved = mpc_.solve();
+    tick_.mpc = solved.status;
+    const char* mpc_message = solved.message;
     interp_.interpolate(mpc_.tick_plan(), plan_.data());
     const double dt = interp_.command_period();
     for (std::size_t k = 0; k < plan_.size(); ++k) {
@@ -271,6 +281,7 @@ class WalkingLoop {
     tick_.status = tick_.mpc == MpcStatus::solved          ? LoopStatus::ok
                    : tick_.mpc == MpcStatus::not_converged ? LoopStatus::not_converged
                                                            : LoopStatus::qp_failed;
+    if (tick_.status != LoopStatus::ok) tick_.message = mpc_message;  // a failed tick only
     return tick_;
   }
 

@@ -16,7 +16,7 @@
 #include "walkgen/control/pattern_targets.hpp"
 #include "walkgen/core/data_dir.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
-#include "walkgen/robot_io/urdf.hpp"
+#include "walkgen/urdf/urdf_loader.hpp"
 
 namespace walkgen {
 

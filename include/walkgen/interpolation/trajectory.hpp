@@ -53,6 +53,31 @@ struct InterpolationSettings {
   Scalar gravity;         ///< [m/s²]
 };
 
+namespace detail {
+/// t / command_period when it is a whole number in [1, 1e6), else 0.
+template <typename Scalar>
+int interpolation_samples_per_tick(const InterpolationSettings<Scalar>& s) {
+  using std::abs;
+  const Scalar ratio = s.t / s.command_period;
+  const int per_tick = ratio < Scalar(1e6) ? int(std::lround(ratio)) : 0;
+  return per_tick >= 1 && abs(Scalar(per_tick) - ratio) <= Scalar(1e-6) * ratio ? per_tick : 0;
+}
+}  // namespace detail
+
+/// Checks the interpolator's numbers (WalkingInterpolator's constructor calls it).
+/// @throws walkgen::invalid_argument naming the first bad field, unless every number is finite
+///   and positive and command_period divides t.
+template <typename Scalar>
+void validate(const InterpolationSettings<Scalar>& s) {
+  check_positive("InterpolationSettings.t", s.t);
+  check_positive("InterpolationSettings.command_period", s.command_period);
+  check_positive("InterpolationSettings.com_z", s.com_z);
+  check_positive("InterpolationSettings.gravity", s.gravity);
+  check_argument(
+      detail::interpolation_samples_per_tick(s) >= 1, "InterpolationSettings.command_period",
+      "a period that divides t = " + std::to_string(s.t) + " s evenly", s.command_period);
+}
+
 /// What one generator tick hands on: the state it planned from and the part of the plan that the
 /// next t seconds follow. A value (no reference into the generator), allocation-free.
 template <typename Scalar = double>
@@ -73,8 +98,7 @@ struct TickPlan {
 template <typename Scalar = double>
 class WalkingInterpolator {
  public:
-  /// @throws walkgen::invalid_argument unless every number is finite and positive and
-  ///         command_period divides t.
+  /// @throws walkgen::invalid_argument for invalid settings (validate()).
   explicit WalkingInterpolator(const InterpolationSettings<Scalar>& settings)
       : dt_(settings.command_period),
         per_tick_(checked_samples_per_tick(settings)),
@@ -124,18 +148,8 @@ class WalkingInterpolator {
   }
 
   static int checked_samples_per_tick(const InterpolationSettings<Scalar>& s) {
-    check_positive("InterpolationSettings.t", s.t);
-    check_positive("InterpolationSettings.command_period", s.command_period);
-    check_positive("InterpolationSettings.com_z", s.com_z);
-    check_positive("InterpolationSettings.gravity", s.gravity);
-    using std::abs;
-    const Scalar ratio = s.t / s.command_period;
-    const int per_tick = ratio < Scalar(1e6) ? int(std::lround(ratio)) : 0;
-    check_argument(per_tick >= 1 && abs(Scalar(per_tick) - ratio) <= Scalar(1e-6) * ratio,
-                   "InterpolationSettings.command_period",
-                   "a period that divides t = " + std::to_string(s.t) + " s evenly",
-                   s.command_period);
-    return per_tick;
+    validate(s);
+    return detail::interpolation_samples_per_tick(s);
   }
 
   Scalar dt_;

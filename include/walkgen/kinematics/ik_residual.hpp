@@ -67,13 +67,21 @@ struct IkResidualSettings {
 /// Throws walkgen::invalid_argument naming the first bad field of `s` (link names are checked
 /// by IkResidual against its tree).
 inline void validate(const IkResidualSettings& s) {
-  check_argument(
-      s.com_body_point.allFinite() && s.lf_body_point.allFinite() && s.rf_body_point.allFinite(),
-      "IkResidualSettings body points", "finite offsets [m]", "NaN or inf");
-  for (double w : {s.com_weight, s.foot_position_weight, s.foot_orientation_weight,
-                   s.base_orientation_weight, s.torso_orientation_weight}) {
-    check_positive("IkResidualSettings weights", w, "finite weights > 0");
-  }
+  check_argument(s.com_body_point.allFinite(), "IkResidualSettings.com_body_point",
+                 "a finite offset [m]", "NaN or inf");
+  check_argument(s.lf_body_point.allFinite(), "IkResidualSettings.lf_body_point",
+                 "a finite offset [m]", "NaN or inf");
+  check_argument(s.rf_body_point.allFinite(), "IkResidualSettings.rf_body_point",
+                 "a finite offset [m]", "NaN or inf");
+  check_positive("IkResidualSettings.com_weight", s.com_weight, "a finite weight > 0");
+  check_positive("IkResidualSettings.foot_position_weight", s.foot_position_weight,
+                 "a finite weight > 0");
+  check_positive("IkResidualSettings.foot_orientation_weight", s.foot_orientation_weight,
+                 "a finite weight > 0");
+  check_positive("IkResidualSettings.base_orientation_weight", s.base_orientation_weight,
+                 "a finite weight > 0");
+  check_positive("IkResidualSettings.torso_orientation_weight", s.torso_orientation_weight,
+                 "a finite weight > 0");
 }
 
 namespace detail {
@@ -267,9 +275,9 @@ class IkResidual {
   }
 
   /// The unweighted errors of x against `target` in the error fields of an IkResult (com_error
-  /// … torso_orientation_error; status, iterations, runs and cost keep their defaults): sole
-  /// position (of the body points), yaw and tilt as the worse foot, base and torso as rotation
-  /// angles. No checks; leaves x's FK in ws.
+  /// … torso_orientation_error; status, message, iterations, runs and cost keep their
+  /// defaults): sole position (of the body points), yaw and tilt as the worse foot, base and
+  /// torso as rotation angles. No checks; leaves x's FK in ws.
   IkResult errors(const IkTarget& target, const Eigen::Matrix3d& start_rotation, const double* x,
                   Workspace& ws) const {
     forward(start_rotation, x, tree_, ws.fk);

@@ -65,6 +65,9 @@ constexpr const char* to_string(IkStatus status) noexcept {
 /// the unweighted errors of the final iterate (of the best run; infinity when nothing was solved).
 struct IkResult {
   IkStatus status = IkStatus::invalid_input;
+  /// Why it did not converge (a static string: solves run in the control loop); empty when
+  /// converged.
+  const char* message = "";
   bool applied = false;  ///< the solution was updated (only when converged)
   int iterations = 0;    ///< LM iterations (successful + unsuccessful steps), all runs
   int runs = 0;          ///< Ceres runs (up to n_init on a cold solve)

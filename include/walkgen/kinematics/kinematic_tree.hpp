@@ -19,7 +19,7 @@
 /// - q holds one angle [rad] per revolute joint, in the order of the joints in the
 ///   KinematicDescription (for a URDF: document order), which joint_index() also gives.
 ///
-/// The description is plain data in double (read from URDF by robot_io/urdf.hpp, or written by
+/// The description is plain data in double (read from URDF by urdf/urdf_loader.hpp, or written by
 /// hand); the tree validates it and converts it once to Scalar.
 
 #include <Eigen/Core>
@@ -40,6 +40,17 @@ namespace walkgen {
 
 /// Joint types of a KinematicTree. A URDF "continuous" joint is a revolute one without limits.
 enum class JointType { revolute, fixed };
+
+/// "revolute" or "fixed", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(JointType type) noexcept {
+  switch (type) {
+    case JointType::revolute:
+      return "revolute";
+    case JointType::fixed:
+      return "fixed";
+  }
+  return "unknown";
+}
 
 /// What KinematicTree accepts in a description beyond finiteness: a link's mass and the length
 /// of a joint's axis before it is normalised (the norm of (1e200, 0, 0) overflows to a zero

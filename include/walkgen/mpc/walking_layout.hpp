@@ -34,6 +34,19 @@ enum class ShiftRule : std::uint8_t {
   fixed,       ///< stays (the terminal capture point)
 };
 
+/// The enumerator's name ("per_sample", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(ShiftRule rule) noexcept {
+  switch (rule) {
+    case ShiftRule::per_sample:
+      return "per_sample";
+    case ShiftRule::per_step:
+      return "per_step";
+    case ShiftRule::fixed:
+      return "fixed";
+  }
+  return "unknown";
+}
+
 /// `repeats` groups of `units` units (samples or steps) of `width` entries each, in that order:
 /// local index ((repeat · units) + unit) · width + k.
 struct BlockShape {

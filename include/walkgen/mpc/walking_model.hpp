@@ -34,43 +34,41 @@
 #include "walkgen/mpc/settings.hpp"
 #include "walkgen/mpc/walking_layout.hpp"
 #include "walkgen/mpc/walking_schedule.hpp"
+#include "walkgen/qp/dense_qp.hpp"
 
 namespace walkgen {
 
-/// What a tick computes: the schedule, the QP of the last SQP iteration (H, g, A,
-/// lb ≤ A U ≤ ub, l ≤ U ≤ u) and scratch. Sized once from the layout; public for tests and
-/// diagnostics (WalkingMpc::workspace() gives read-only access).
+/// What a tick computes: the schedule, the QP of the last SQP iteration and scratch. The QP's
+/// data (H, g, A, lb ≤ A U ≤ ub, l ≤ U ≤ u) live once, in the solver: the model assembles them
+/// in place into `qp.problem()` and the solver factorises them there (no copy per solve). Sized
+/// once from the layout; public for tests and diagnostics (WalkingMpc::workspace() gives
+/// read-only access).
 template <typename Scalar>
 struct WalkingWorkspace {
-  using MatrixX = MpcMatrix<Scalar>;
-  using RowMatrixX = MpcRowMatrix<Scalar>;
   using VectorX = MpcVector<Scalar>;
   static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
 
   WalkingSchedule<Scalar> schedule;
-  MatrixX H;        ///< Hessian (eq. 2.56)
-  VectorX g;        ///< gradient (eq. 2.57, 2.85)
-  RowMatrixX A;     ///< the constraint rows' Jacobian at `iterate` (eq. 2.86–2.88)
-  VectorX lb, ub;   ///< their bounds, shifted by c(iterate) − A iterate
-  VectorX l, u;     ///< variable bounds: ±∞ but the landing footstep when it is frozen
-  VectorX iterate;  ///< the U the QP was linearised at
-  VectorX scratch;  ///< N entries for the cost terms
+  /// The QP solver and its data: problem().H the Hessian (eq. 2.56), .g the gradient (eq. 2.57,
+  /// 2.85), .A the constraint rows' Jacobian at `iterate` (eq. 2.86–2.88), .lb/.ub their bounds
+  /// shifted by c(iterate) − A iterate, .l/.u the variable bounds (±∞ but the landing footstep
+  /// when it is frozen).
+  DenseQp<Scalar> qp;
+  VectorX iterate;              ///< the U the QP was linearised at
+  VectorX scratch;              ///< N entries for the cost terms
   VectorX c, c_lower, c_upper;  ///< c(U) and its bounds at the last plan (the violation)
 
   explicit WalkingWorkspace(const WalkingLayout& L)
       : schedule(L.dims()),
-        H(MatrixX::Zero(L.num_vars(), L.num_vars())),
-        g(VectorX::Zero(L.num_vars())),
-        A(RowMatrixX::Zero(L.num_rows(), L.num_vars())),
-        lb(VectorX::Zero(L.num_rows())),
-        ub(VectorX::Zero(L.num_rows())),
-        l(VectorX::Constant(L.num_vars(), -kInf)),
-        u(VectorX::Constant(L.num_vars(), kInf)),
+        qp(L.num_vars(), L.num_rows()),
         iterate(VectorX::Zero(L.num_vars())),
         scratch(VectorX::Zero(L.dims().N)),
         c(VectorX::Zero(L.num_rows())),
         c_lower(VectorX::Zero(L.num_rows())),
-        c_upper(VectorX::Zero(L.num_rows())) {}
+        c_upper(VectorX::Zero(L.num_rows())) {
+    qp.problem().l.setConstant(-kInf);
+    qp.problem().u.setConstant(kInf);
+  }
 };
 
 /// The formulation. Template parameters as WalkingMpc's.
@@ -99,26 +97,7 @@ class WalkingModel {
   /// @param obstacle_capacity most obstacles a tick will be given (at least the settings' own)
   /// @throws walkgen::invalid_argument on invalid settings or sizes that contradict N,
   ///         FootEdges or HullEdges.
-  explicit WalkingModel(const Settings& settings, Index obstacle_capacity = 0)
-      : s_(checked(settings)),
-        layout_(dims_of(s_, obstacle_capacity)),
-        preview_(s_.t, s_.com_z, s_.gravity, s_.n),
-        step_(s_.t),
-        constraints_(make_constraints(s_, preview_)),
-        costs_(FootstepRegularization<Scalar>(s_), StepVelocity<Scalar>(s_), YawRate<Scalar>(s_),
-               VelocityTracking<Scalar, N>(s_), ZmpCentring<Scalar, N>(s_), Jerk<Scalar>(s_)) {
-    std::apply(
-        [&](const auto&... block) {
-          (layout_.add_rows(block.kName, block.shape(layout_.dims())), ...);
-        },
-        constraints_);
-    H_constant_.setZero(layout_.num_vars(), layout_.num_vars());
-    std::apply(
-        [&](const auto&... cost) {
-          (cost.add_constant_hessian(layout_, preview_, H_constant_), ...);
-        },
-        costs_);
-  }
+  explicit WalkingModel(const Settings& settings, Index obstacle_capacity = 0);
 
   const Settings& settings() const { return s_; }
   const WalkingLayout& layout() const { return layout_; }
@@ -144,22 +123,11 @@ class WalkingModel {
   /// The per-tick data that do not depend on the iterate: the schedule, and the bounds that
   /// freeze the landing footstep in the last interval before it touches down.
   void prepare(const WalkingState<Scalar>& state, const Eigen::Matrix<Scalar, 3, 1>& command,
-               const VectorX& plan, Workspace& w) const {
-    w.schedule.update(s_, state, command);
-    const bool frozen = state.phase == layout_.dims().S - 1;
-    for (Index base : {layout_.step_x(), layout_.step_y(), layout_.step_q()}) {
-      w.l[base] = frozen ? plan[base] : -Workspace::kInf;
-      w.u[base] = frozen ? plan[base] : Workspace::kInf;
-    }
-  }
+               const VectorX& plan, Workspace& w) const;
 
   /// H and g of the cost (eq. 2.51–2.60, gradient per docs/design.md §5) at t.iterate: the
   /// constant Hessian plus every cost term's tick part.
-  void assemble_cost(const Tick& t, MatrixX& H, VectorX& g, VectorX& scratch) const {
-    H = H_constant_;
-    g.setZero();
-    std::apply([&](const auto&... cost) { (cost.add(t, H, g, scratch), ...); }, costs_);
-  }
+  void assemble_cost(const Tick& t, MatrixX& H, VectorX& g, VectorX& scratch) const;
 
   /// The nonlinear constraint values c(U) of eq. 2.65–2.82, for any scalar T (Jets included).
   template <typename T>
@@ -168,28 +136,14 @@ class WalkingModel {
         [&](const auto& b, const LayoutBlock& rows) { b.template values<T>(t, rows, U, c); });
   }
   /// Their bounds lower ≤ c(U) ≤ upper.
-  void constraint_bounds(const Tick& t, VectorX& lower, VectorX& upper) const {
-    for_each_constraint(
-        [&](const auto& b, const LayoutBlock& rows) { b.bounds(t, rows, lower, upper); });
-  }
+  void constraint_bounds(const Tick& t, VectorX& lower, VectorX& upper) const;
   /// The Gauss–Newton rows at U (eq. 2.86–2.88): J = ∂c/∂U, bounds shifted by c(U) − J U.
   void linearise(const Tick& t, const VectorX& U, RowMatrixX& J, VectorX& lower,
-                 VectorX& upper) const {
-    J.setZero();
-    for_each_constraint(
-        [&](const auto& b, const LayoutBlock& rows) { b.linearise(t, rows, U, J, lower, upper); });
-  }
+                 VectorX& upper) const;
   /// Largest violation max(lower − c(U), c(U) − upper, 0) of the nonlinear constraints at U;
   /// c, lower and upper receive the values and bounds.
   Scalar violation(const Tick& t, const VectorX& U, VectorX& c, VectorX& lower,
-                   VectorX& upper) const {
-    constraint_values<Scalar>(t, U, c);
-    constraint_bounds(t, lower, upper);
-    Scalar worst = Scalar(0);
-    for (Index r = 0; r < c.size(); ++r)
-      worst = std::max({worst, lower[r] - c[r], c[r] - upper[r]});
-    return worst;
-  }
+                   VectorX& upper) const;
 
  private:
   template <typename F, int... K>
@@ -255,5 +209,79 @@ class WalkingModel {
   Costs costs_;
   MatrixX H_constant_;
 };
+
+// ------------------------------------------------------------------------------------------------
+// Implementation, outside the class so that it is not implicitly inline (see mpc/walking_mpc.hpp).
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+WalkingModel<Scalar, N, FootEdges, HullEdges>::WalkingModel(const Settings& settings,
+                                                            Index obstacle_capacity)
+    : s_(checked(settings)),
+      layout_(dims_of(s_, obstacle_capacity)),
+      preview_(s_.t, s_.com_z, s_.gravity, s_.n),
+      step_(s_.t),
+      constraints_(make_constraints(s_, preview_)),
+      costs_(FootstepRegularization<Scalar>(s_), StepVelocity<Scalar>(s_), YawRate<Scalar>(s_),
+             VelocityTracking<Scalar, N>(s_), ZmpCentring<Scalar, N>(s_), Jerk<Scalar>(s_)) {
+  std::apply(
+      [&](const auto&... block) {
+        (layout_.add_rows(block.kName, block.shape(layout_.dims())), ...);
+      },
+      constraints_);
+  H_constant_.setZero(layout_.num_vars(), layout_.num_vars());
+  std::apply(
+      [&](const auto&... cost) {
+        (cost.add_constant_hessian(layout_, preview_, H_constant_), ...);
+      },
+      costs_);
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingModel<Scalar, N, FootEdges, HullEdges>::prepare(
+    const WalkingState<Scalar>& state, const Eigen::Matrix<Scalar, 3, 1>& command,
+    const VectorX& plan, Workspace& w) const {
+  w.schedule.update(s_, state, command);
+  const bool frozen = state.phase == layout_.dims().S - 1;
+  for (Index base : {layout_.step_x(), layout_.step_y(), layout_.step_q()}) {
+    w.qp.problem().l[base] = frozen ? plan[base] : -Workspace::kInf;
+    w.qp.problem().u[base] = frozen ? plan[base] : Workspace::kInf;
+  }
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingModel<Scalar, N, FootEdges, HullEdges>::assemble_cost(const Tick& t, MatrixX& H,
+                                                                  VectorX& g,
+                                                                  VectorX& scratch) const {
+  H = H_constant_;
+  g.setZero();
+  std::apply([&](const auto&... cost) { (cost.add(t, H, g, scratch), ...); }, costs_);
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingModel<Scalar, N, FootEdges, HullEdges>::constraint_bounds(const Tick& t, VectorX& lower,
+                                                                      VectorX& upper) const {
+  for_each_constraint(
+      [&](const auto& b, const LayoutBlock& rows) { b.bounds(t, rows, lower, upper); });
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingModel<Scalar, N, FootEdges, HullEdges>::linearise(const Tick& t, const VectorX& U,
+                                                              RowMatrixX& J, VectorX& lower,
+                                                              VectorX& upper) const {
+  J.setZero();
+  for_each_constraint(
+      [&](const auto& b, const LayoutBlock& rows) { b.linearise(t, rows, U, J, lower, upper); });
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+Scalar WalkingModel<Scalar, N, FootEdges, HullEdges>::violation(const Tick& t, const VectorX& U,
+                                                                VectorX& c, VectorX& lower,
+                                                                VectorX& upper) const {
+  constraint_values<Scalar>(t, U, c);
+  constraint_bounds(t, lower, upper);
+  Scalar worst = Scalar(0);
+  for (Index r = 0; r < c.size(); ++r) worst = std::max({worst, lower[r] - c[r], c[r] - upper[r]});
+  return worst;
+}
 
 }  // namespace walkgen

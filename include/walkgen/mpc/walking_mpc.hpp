@@ -25,6 +25,8 @@
 /// @endcode
 /// Allocation: the constructor sizes everything; solve(), advance(), set_command(), set_state()
 /// and set_obstacles() never touch the heap (tests/mpc/test_walking_mpc_no_alloc.cpp).
+/// Compile time: mpc/walking_mpc_16.hpp and the library walkgen::walking_mpc_16 give a
+/// precompiled WalkingMpc<double, 16> (docs/walking.md, "Compile time").
 
 #include <Eigen/Core>
 #include <vector>
@@ -77,13 +79,7 @@ class WalkingMpc {
   ///        settings' own); rows for them are reserved now so that no tick allocates.
   /// @throws walkgen::invalid_argument on invalid settings or sizes that contradict N,
   ///         FootEdges or HullEdges.
-  explicit WalkingMpc(const Settings& settings, Index obstacle_capacity = 0)
-      : model_(settings, obstacle_capacity), ws_(model_.layout()), qp_(num_vars(), num_rows()) {
-    obstacles_.reserve(static_cast<std::size_t>(layout().dims().obstacles));
-    obstacles_ = model_.settings().obstacles;
-    qp_.settings().max_iterations = model_.settings().nwsr;
-    reset(initial_state(model_.settings()));
-  }
+  explicit WalkingMpc(const Settings& settings, Index obstacle_capacity = 0);
 
   // --- Sizes -------------------------------------------------------------------------------------
   Index horizon() const { return layout().dims().N; }
@@ -117,17 +113,9 @@ class WalkingMpc {
   ///         settings().max_state_distance from the support foot, the CoM faster than
   ///         max_com_speed or accelerating more than max_com_acceleration (a feedback glitch;
   ///         the state is left unchanged).
-  void set_state(const State& state) {
-    check_walking_state("WalkingMpc::set_state", settings(), state);
-    state_ = state;
-  }
+  void set_state(const State& state);
   /// Restarts from `state`: also forgets the plan and the QP's warm start.
-  void reset(const State& state) {
-    set_state(state);
-    initial_plan();
-    qp_.reset_warm_start();
-    shifted_samples_ = shifted_steps_ = 0;
-  }
+  void reset(const State& state);
 
   /// Replaces the obstacles (world frame). No allocation up to obstacle_capacity().
   /// @throws walkgen::invalid_argument beyond the capacity or on invalid obstacles.
@@ -143,73 +131,12 @@ class WalkingMpc {
   /// linearised at the current iterate (the previous plan, shifted, on the first), plus at most
   /// sqp_corrections while the plan violates its nonlinear constraints beyond sqp_tolerance. A
   /// failed QP is never applied: the plan stays the previous iterate and the status says so.
-  [[nodiscard]] const Result& solve() {
-    const Settings& s = settings();
-    result_.status = MpcStatus::solved;
-    result_.sqp_iterations = 0;
-    result_.qp_iterations = 0;
-    result_.message = "";
-    model_.prepare(state_, command_, plan_.U, ws_);
-    shift_warm_start();
-    for (int it = 0; it < s.sqp_iterations + s.sqp_corrections; ++it) {
-      if (it >= s.sqp_iterations && result_.constraint_violation <= s.sqp_tolerance) break;
-      ws_.iterate = plan_.U;
-      const auto t = tick(ws_.iterate);
-      model_.assemble_cost(t, ws_.H, ws_.g, ws_.scratch);
-      model_.linearise(t, ws_.iterate, ws_.A, ws_.lb, ws_.ub);
-      QpStatus st = qp_.init(ws_.H, ws_.g, ws_.A, ws_.lb, ws_.ub, ws_.l, ws_.u);
-      if (st != QpStatus::invalid_input) st = qp_.solve().status;
-      const auto& qr = qp_.result();
-      result_.qp_status = st;
-      result_.qp_iterations += qr.iterations;
-      result_.primal_residual = qr.primal_residual;
-      ++result_.sqp_iterations;
-      if (st != QpStatus::solved) {
-        // A failed correction keeps the solved plan of the iteration before; only a failure
-        // within the first sqp_iterations fails the tick.
-        if (it < s.sqp_iterations) {
-          result_.status = MpcStatus::qp_failed;
-          result_.message = qr.message;
-        }
-        qp_.reset_warm_start();
-        break;
-      }
-      plan_.U = qr.x;
-      result_.constraint_violation =
-          model_.violation(tick(plan_.U), plan_.U, ws_.c, ws_.c_lower, ws_.c_upper);
-    }
-    // Solved is a promise: the plan meets its nonlinear constraints within sqp_tolerance.
-    if (result_.status == MpcStatus::solved && !(result_.constraint_violation <= s.sqp_tolerance)) {
-      result_.status = MpcStatus::not_converged;
-      result_.message = "the plan violates its nonlinear constraints beyond sqp_tolerance";
-    }
-    return result_;
-  }
+  [[nodiscard]] const Result& solve();
 
   /// Moves the state one preview period t forward along the plan: CoM by the LIPM with the
   /// first jerk, the swing foot along its polynomials; at the end of a step the swing foot lands
   /// on the first planned footstep, which becomes the support foot, and the plan shifts.
-  void advance() {
-    const Scalar t = settings().t;
-    state_.com_x = model_.lipm_step().advance(state_.com_x, plan_.jerk_x(0));
-    state_.com_y = model_.lipm_step().advance(state_.com_y, plan_.jerk_y(0));
-    const Scalar tau0 = Scalar(state_.phase) * t;
-    const FootPose<Scalar> target = plan_.footstep(1);
-    state_.swing = swing_foot_sample(step_timing(), state_.swing, tau0, target, tau0 + t).motion;
-    state_.time += t;
-    shift_jerks();
-    ++shifted_samples_;
-    if (++state_.phase < samples_per_step()) return;
-    ++shifted_steps_;
-    // The swing foot lands: it supports the next step; the old support foot will swing.
-    state_.phase = 0;
-    ++state_.step_count;
-    state_.swing_origin = state_.support;
-    state_.swing = FootMotion<Scalar>::at_rest(state_.support);
-    state_.support = target;
-    state_.support_foot = other(state_.support_foot);
-    shift_footsteps();
-  }
+  void advance();
 
   // --- Outputs -----------------------------------------------------------------------------------
   const State& state() const { return state_; }
@@ -252,15 +179,10 @@ class WalkingMpc {
   /// The nonlinear constraint functions c(U) of eq. 2.65–2.82 for the current state, written as
   /// lb_c ≤ c(U) ≤ ub_c with the same rows as the QP: the QP's rows are their Gauss–Newton
   /// linearisation at the iterate, A = ∂c/∂U. For tests; allocation-free.
-  void constraint_values(const VectorX& U, VectorX& c, VectorX& lower, VectorX& upper) const {
-    model_.template constraint_values<Scalar>(tick(U), U, c);
-    model_.constraint_bounds(tick(U), lower, upper);
-  }
+  void constraint_values(const VectorX& U, VectorX& c, VectorX& lower, VectorX& upper) const;
   /// The Jacobian ∂c/∂U at U (the QP's constraint matrix when U is the iterate); lower/upper
   /// receive the QP's row bounds for that linearisation.
-  void constraint_jacobian(const VectorX& U, RowMatrixX& J, VectorX& lower, VectorX& upper) const {
-    model_.linearise(tick(U), U, J, lower, upper);
-  }
+  void constraint_jacobian(const VectorX& U, RowMatrixX& J, VectorX& lower, VectorX& upper) const;
 
   /// The initial state of a settings set: CoM from com_x/com_y, support foot at
   /// (foot_x, foot_y, foot_q), the other foot foot_distance beside it, standing.
@@ -272,57 +194,22 @@ class WalkingMpc {
   }
 
   /// A plan standing in place: zero jerks, footsteps alternating on the two current feet.
-  void initial_plan() {
-    const WalkingLayout& L = layout();
-    plan_.N = int(horizon());
-    plan_.nf = int(planned_steps());
-    plan_.U.setZero(num_vars());
-    for (Index i = 1; i <= planned_steps(); ++i) {
-      const FootPose<Scalar>& p = (i % 2 == 1) ? state_.swing_origin : state_.support;
-      plan_.U[L.step_x() + i - 1] = p.x;
-      plan_.U[L.step_y() + i - 1] = p.y;
-      plan_.U[L.step_q() + i - 1] = p.q;
-    }
-  }
+  void initial_plan();
 
-  void shift_jerks() {
-    const Index n = horizon();
-    for (Index base : {layout().jerk_x(), layout().jerk_y()}) {
-      for (Index j = 0; j + 1 < n; ++j) plan_.U[base + j] = plan_.U[base + j + 1];
-      plan_.U[base + n - 1] = Scalar(0);
-    }
-  }
+  void shift_jerks();
 
   /// After a landing: footstep i+1 becomes i. The new last footstep is guessed where the step
   /// velocity target puts it (the Gauss–Newton rows are linearised there: a guess far from the
   /// solution makes the rotated rows' linearisation error large).
-  void shift_footsteps() {
-    const WalkingLayout& L = layout();
-    const Index nf = planned_steps();
-    for (Index base : {L.step_x(), L.step_y(), L.step_q()}) {
-      for (Index i = 1; i < nf; ++i) plan_.U[base + i - 1] = plan_.U[base + i];
-    }
-    const FootPose<Scalar> last = nf >= 2 ? plan_.footstep(int(nf - 1)) : state_.support;
-    Scalar dx, dy;
-    step_displacement(settings(), state_, command_, nf, dx, dy);
-    plan_.U[L.step_x() + nf - 1] = last.x + dx;
-    plan_.U[L.step_y() + nf - 1] = last.y + dy;
-    plan_.U[L.step_q() + nf - 1] = last.q + command_[2] * settings().t_step;
-  }
+  void shift_footsteps();
 
   /// Moves the QP's warm-start active set along with the plan: advance() shifted the horizon by
   /// shifted_samples_ samples and shifted_steps_ landings; the layout renames every row and
   /// bound by its block's shift rule (WalkingLayout::renamed).
-  void shift_warm_start() {
-    const Index ds = shifted_samples_, di = shifted_steps_;
-    shifted_samples_ = shifted_steps_ = 0;
-    if (ds == 0) return;
-    qp_.rename_warm_start([&](int c) { return int(layout().renamed(c, ds, di)); });
-  }
+  void shift_warm_start();
 
   Model model_;
   Workspace ws_;
-  DenseQp<Scalar> qp_;
   std::vector<Obstacle> obstacles_;
   State state_;
   Plan plan_;
@@ -330,5 +217,163 @@ class WalkingMpc {
   Vector3 command_ = Vector3::Zero();
   Index shifted_samples_ = 0, shifted_steps_ = 0;  // advance()s since the last solve()
 };
+
+// ------------------------------------------------------------------------------------------------
+// Implementation. The members that build, solve and shift are defined here, outside the class, so
+// that they are not implicitly inline: a translation unit that declares their instantiation
+// extern (mpc/walking_mpc_16.hpp) then compiles none of them.
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+WalkingMpc<Scalar, N, FootEdges, HullEdges>::WalkingMpc(const Settings& settings,
+                                                        Index obstacle_capacity)
+    : model_(settings, obstacle_capacity), ws_(model_.layout()) {
+  obstacles_.reserve(static_cast<std::size_t>(layout().dims().obstacles));
+  obstacles_ = model_.settings().obstacles;
+  ws_.qp.settings().max_iterations = model_.settings().nwsr;
+  reset(initial_state(model_.settings()));
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::set_state(const State& state) {
+  check_walking_state("WalkingMpc::set_state", settings(), state);
+  state_ = state;
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::reset(const State& state) {
+  set_state(state);
+  initial_plan();
+  ws_.qp.reset_warm_start();
+  shifted_samples_ = shifted_steps_ = 0;
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
+  const Settings& s = settings();
+  result_.status = MpcStatus::solved;
+  result_.sqp_iterations = 0;
+  result_.qp_iterations = 0;
+  result_.message = "";
+  model_.prepare(state_, command_, plan_.U, ws_);
+  shift_warm_start();
+  for (int it = 0; it < s.sqp_iterations + s.sqp_corrections; ++it) {
+    if (it >= s.sqp_iterations && result_.constraint_violation <= s.sqp_tolerance) break;
+    ws_.iterate = plan_.U;
+    const auto t = tick(ws_.iterate);
+    auto& qp = ws_.qp.problem();  // assembled in place: the solver owns the data
+    model_.assemble_cost(t, qp.H, qp.g, ws_.scratch);
+    model_.linearise(t, ws_.iterate, qp.A, qp.lb, qp.ub);
+    QpStatus st = ws_.qp.init();
+    if (st != QpStatus::invalid_input) st = ws_.qp.solve().status;
+    const auto& qr = ws_.qp.result();
+    result_.qp_status = st;
+    result_.qp_iterations += qr.iterations;
+    result_.primal_residual = qr.primal_residual;
+    ++result_.sqp_iterations;
+    if (st != QpStatus::solved) {
+      // A failed correction keeps the solved plan of the iteration before; only a failure
+      // within the first sqp_iterations fails the tick.
+      if (it < s.sqp_iterations) {
+        result_.status = MpcStatus::qp_failed;
+        result_.message = qr.message;
+      }
+      ws_.qp.reset_warm_start();
+      break;
+    }
+    plan_.U = qr.x;
+    result_.constraint_violation =
+        model_.violation(tick(plan_.U), plan_.U, ws_.c, ws_.c_lower, ws_.c_upper);
+  }
+  // Solved is a promise: the plan meets its nonlinear constraints within sqp_tolerance.
+  if (result_.status == MpcStatus::solved && !(result_.constraint_violation <= s.sqp_tolerance)) {
+    result_.status = MpcStatus::not_converged;
+    result_.message = "the plan violates its nonlinear constraints beyond sqp_tolerance";
+  }
+  return result_;
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::advance() {
+  const Scalar t = settings().t;
+  state_.com_x = model_.lipm_step().advance(state_.com_x, plan_.jerk_x(0));
+  state_.com_y = model_.lipm_step().advance(state_.com_y, plan_.jerk_y(0));
+  const Scalar tau0 = Scalar(state_.phase) * t;
+  const FootPose<Scalar> target = plan_.footstep(1);
+  state_.swing = swing_foot_sample(step_timing(), state_.swing, tau0, target, tau0 + t).motion;
+  state_.time += t;
+  shift_jerks();
+  ++shifted_samples_;
+  if (++state_.phase < samples_per_step()) return;
+  ++shifted_steps_;
+  // The swing foot lands: it supports the next step; the old support foot will swing.
+  state_.phase = 0;
+  ++state_.step_count;
+  state_.swing_origin = state_.support;
+  state_.swing = FootMotion<Scalar>::at_rest(state_.support);
+  state_.support = target;
+  state_.support_foot = other(state_.support_foot);
+  shift_footsteps();
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::constraint_values(const VectorX& U, VectorX& c,
+                                                                    VectorX& lower,
+                                                                    VectorX& upper) const {
+  model_.template constraint_values<Scalar>(tick(U), U, c);
+  model_.constraint_bounds(tick(U), lower, upper);
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::constraint_jacobian(const VectorX& U,
+                                                                      RowMatrixX& J, VectorX& lower,
+                                                                      VectorX& upper) const {
+  model_.linearise(tick(U), U, J, lower, upper);
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::initial_plan() {
+  const WalkingLayout& L = layout();
+  plan_.N = int(horizon());
+  plan_.nf = int(planned_steps());
+  plan_.U.setZero(num_vars());
+  for (Index i = 1; i <= planned_steps(); ++i) {
+    const FootPose<Scalar>& p = (i % 2 == 1) ? state_.swing_origin : state_.support;
+    plan_.U[L.step_x() + i - 1] = p.x;
+    plan_.U[L.step_y() + i - 1] = p.y;
+    plan_.U[L.step_q() + i - 1] = p.q;
+  }
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::shift_jerks() {
+  const Index n = horizon();
+  for (Index base : {layout().jerk_x(), layout().jerk_y()}) {
+    for (Index j = 0; j + 1 < n; ++j) plan_.U[base + j] = plan_.U[base + j + 1];
+    plan_.U[base + n - 1] = Scalar(0);
+  }
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::shift_footsteps() {
+  const WalkingLayout& L = layout();
+  const Index nf = planned_steps();
+  for (Index base : {L.step_x(), L.step_y(), L.step_q()}) {
+    for (Index i = 1; i < nf; ++i) plan_.U[base + i - 1] = plan_.U[base + i];
+  }
+  const FootPose<Scalar> last = nf >= 2 ? plan_.footstep(int(nf - 1)) : state_.support;
+  Scalar dx, dy;
+  step_displacement(settings(), state_, command_, nf, dx, dy);
+  plan_.U[L.step_x() + nf - 1] = last.x + dx;
+  plan_.U[L.step_y() + nf - 1] = last.y + dy;
+  plan_.U[L.step_q() + nf - 1] = last.q + command_[2] * settings().t_step;
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+void WalkingMpc<Scalar, N, FootEdges, HullEdges>::shift_warm_start() {
+  const Index ds = shifted_samples_, di = shifted_steps_;
+  shifted_samples_ = shifted_steps_ = 0;
+  if (ds == 0) return;
+  ws_.qp.rename_warm_start([&](int c) { return int(layout().renamed(c, ds, di)); });
+}
 
 }  // namespace walkgen

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// MuJoCo simulation backend of the robot interface (walkgen/robot_io/robot.hpp). Target
+/// MuJoCo simulation backend of the robot interface (walkgen/robot/robot.hpp). Target
 /// walkgen::mujoco (Debian: libmujoco-dev, and libegl1 + libegl-mesa0 for the cameras); the core
 /// never includes this header.
 ///
@@ -33,12 +33,25 @@
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
 
 namespace walkgen {
 
 /// Shapes of SceneObject.
 enum class SceneShape : std::uint8_t { box, cylinder, sphere };
+
+/// "box", "cylinder" or "sphere", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(SceneShape shape) noexcept {
+  switch (shape) {
+    case SceneShape::box:
+      return "box";
+    case SceneShape::cylinder:
+      return "cylinder";
+    case SceneShape::sphere:
+      return "sphere";
+  }
+  return "unknown";
+}
 
 /// A static object added to the model's world (a target, a chair, a wall): one geom in a body of
 /// its own, standing on the floor unless position.z says otherwise.
@@ -87,13 +100,42 @@ struct MujocoRobotSettings {
   int view_height = 480;
 };
 
+/// Checks the settings that do not need the model (MujocoRobot's constructor calls this; the
+/// names are then looked up in the model).
+/// @throws walkgen::invalid_argument naming the first bad field (and object).
+inline void validate(const MujocoRobotSettings& s) {
+  check_argument(!s.joint_names.empty(), "MujocoRobotSettings.joint_names", "at least one joint",
+                 "none");
+  check_argument(s.fall_height_ratio > 0.0 && s.fall_height_ratio < 1.0,
+                 "MujocoRobotSettings.fall_height_ratio", "a fraction in (0, 1)",
+                 s.fall_height_ratio);
+  check_argument(s.view_width >= 1 && s.view_width <= 16384, "MujocoRobotSettings.view_width",
+                 "a width in [1, 16384] px", s.view_width);
+  check_argument(s.view_height >= 1 && s.view_height <= 16384, "MujocoRobotSettings.view_height",
+                 "a height in [1, 16384] px", s.view_height);
+  for (const SceneObject& o : s.objects) {
+    bool name_ok = !o.name.empty();
+    for (char c : o.name)
+      name_ok = name_ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+    check_argument(name_ok, "MujocoRobotSettings.objects: name", "letters, digits, '_' or '-'",
+                   "'" + o.name + "'");
+    const std::string where = "MujocoRobotSettings.objects: '" + o.name + "'";
+    check_argument(o.position.allFinite() && std::isfinite(o.yaw) && o.size.allFinite() &&
+                       (o.size.array() > 0.0).all(),
+                   where.c_str(), "a finite pose and sizes > 0", "NaN, inf or a size <= 0");
+    check_argument((o.rgb.array() >= 0.0).all() && (o.rgb.array() <= 1.0).all(),
+                   (where + " rgb").c_str(), "values in [0, 1]", "out of range");
+  }
+}
+
 /// A simulated robot in MuJoCo. Not copyable (owns the model, data and GL context).
 class MujocoRobot final : public Robot {
  public:
-  /// @throws walkgen::invalid_argument when the model cannot be read (naming the file and
-  ///   MuJoCo's message), or names are missing from it (listing every one), or the model has
-  ///   actuators that are not ours.
+  /// @throws walkgen::invalid_argument for invalid settings (validate()), when the model cannot
+  ///   be read (naming the file and MuJoCo's message), or names are missing from it (listing
+  ///   every one), or the model has actuators that are not ours.
   explicit MujocoRobot(MujocoRobotSettings settings = {}) : settings_(std::move(settings)) {
+    validate(settings_);
     if (settings_.model_path.empty()) settings_.model_path = humanoid_mjcf_path();
     load_model();
     map_names();
@@ -285,18 +327,7 @@ class MujocoRobot final : public Robot {
     std::ostringstream bodies, assets;
     bodies.precision(17);
     assets.precision(17);
-    for (const SceneObject& o : settings_.objects) {
-      bool name_ok = !o.name.empty();
-      for (char c : o.name)
-        name_ok = name_ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
-      check_argument(name_ok, "MujocoRobotSettings.objects: name", "letters, digits, '_' or '-'",
-                     "'" + o.name + "'");
-      const std::string where = "MujocoRobotSettings.objects: '" + o.name + "'";
-      check_argument(o.position.allFinite() && std::isfinite(o.yaw) && o.size.allFinite() &&
-                         (o.size.array() > 0.0).all(),
-                     where.c_str(), "a finite pose and sizes > 0", "NaN, inf or a size <= 0");
-      check_argument((o.rgb.array() >= 0.0).all() && (o.rgb.array() <= 1.0).all(),
-                     (where + " rgb").c_str(), "values in [0, 1]", "out of range");
+    for (const SceneObject& o : settings_.objects) {  // checked by validate()
       const double half_height = o.shape == SceneShape::sphere ? o.size.x() : o.size.z() / 2.0;
       bodies << "    <body name=\"" << o.name << "\" pos=\"" << o.position.x() << ' '
              << o.position.y() << ' ' << o.position.z() + half_height << "\" euler=\"0 0 " << o.yaw

@@ -50,11 +50,49 @@ struct NavigationOptions {
   std::function<void(MujocoRobot&, double)> on_tick;  ///< e.g. to render a video
 };
 
+/// Checks how an episode runs (run_navigation_episode() calls this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const NavigationOptions& o) {
+  check_non_negative("NavigationOptions.time_limit", o.time_limit,
+                     "a finite time limit >= 0 s (0: from the scene)");
+  check_positive("NavigationOptions.reach_distance", o.reach_distance, "a finite distance > 0 m");
+}
+
+/// How a navigation episode ended.
+enum class NavigationStatus : std::uint8_t {
+  reached,             ///< the true CoM came within reach_distance, no collision, no fall
+  collided,            ///< the robot touched a wall, chair, crate or the person
+  fallen,              ///< the robot fell (also while moving its CoM over a foot at the start)
+  diverged,            ///< the simulation diverged
+  timed_out,           ///< the time limit passed first
+  render_unavailable,  ///< the cameras cannot render (no GL context): nothing was run
+};
+
+/// The enumerator's name ("reached", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(NavigationStatus status) noexcept {
+  switch (status) {
+    case NavigationStatus::reached:
+      return "reached";
+    case NavigationStatus::collided:
+      return "collided";
+    case NavigationStatus::fallen:
+      return "fallen";
+    case NavigationStatus::diverged:
+      return "diverged";
+    case NavigationStatus::timed_out:
+      return "timed_out";
+    case NavigationStatus::render_unavailable:
+      return "render_unavailable";
+  }
+  return "unknown";
+}
+
 /// What an episode did.
 struct NavigationResult {
-  bool reached = false;         ///< the true CoM came within reach_distance, no collision, no fall
-  bool collided = false;        ///< the robot touched a wall, chair, crate or the person
-  bool fell = false;            ///< fallen or diverged (or the loop did not start)
+  NavigationStatus status = NavigationStatus::timed_out;
+  bool reached = false;         ///< status reached
+  bool collided = false;        ///< status collided
+  bool fell = false;            ///< status fallen or diverged (also before the walk started)
   std::string message;          ///< why the episode ended, unless it reached the target
   double time = 0.0;            ///< simulated [s], the start's CoM transfer excluded
   double final_distance = 0.0;  ///< true CoM to the target's centre [m]
@@ -81,6 +119,14 @@ inline std::vector<int> obstacle_geoms(const MujocoRobot& robot) {
     if (id >= 0) ids.push_back(id);
   }
   return ids;
+}
+
+/// An episode that the robot ended (fallen or diverged, LoopTick::status), with its message.
+inline void set_stopped(NavigationResult& result, const LoopTick& tick) {
+  result.status =
+      tick.status == LoopStatus::diverged ? NavigationStatus::diverged : NavigationStatus::fallen;
+  result.fell = true;
+  result.message = tick.message;
 }
 
 /// Whether a contact of `d` involves one of `geoms`.
@@ -111,10 +157,12 @@ inline StereoDepth make_stereo_depth(const StereoImages& images) {
 /// limit passes. Heicub's settings with the scene's chairs and person as NMPC obstacles
 /// (margin 0.12 m; the person's circle moves every tick). Numerical outcomes (QP failures, a
 /// fall, a failed render) are in the result, never thrown.
-/// @throws walkgen::invalid_argument when the humanoid's model cannot be loaded.
+/// @throws walkgen::invalid_argument for invalid options (validate()) or when the humanoid's
+///   model cannot be loaded.
 inline NavigationResult run_navigation_episode(const NavigationScene& scene,
                                                const NavigationPolicy& policy,
                                                const NavigationOptions& options = {}) {
+  validate(options);
   NavigationResult result;
   static const KinematicTree<double> tree = humanoid_tree();
   MujocoRobotSettings robot_settings;
@@ -128,8 +176,7 @@ inline NavigationResult run_navigation_episode(const NavigationScene& scene,
 
   const LoopTick& started = loop.start();
   if (started.status != LoopStatus::ok) {
-    result.fell = true;
-    result.message = started.message;
+    detail::set_stopped(result, started);
     return result;
   }
   const double t0 = robot.output().time;
@@ -137,6 +184,7 @@ inline NavigationResult run_navigation_episode(const NavigationScene& scene,
 
   const StereoImages& first = robot.render_cameras();
   if (first.status != RenderStatus::ok) {
+    result.status = NavigationStatus::render_unavailable;
     result.message = first.message;
     return result;
   }
@@ -181,20 +229,22 @@ inline NavigationResult run_navigation_episode(const NavigationScene& scene,
     result.time = robot.output().time - t0;
     result.final_distance = (true_com(robot) - scene.target).norm();
     if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged) {
-      result.fell = true;
-      result.message = tick.message;
+      detail::set_stopped(result, tick);
       break;
     }
     if (detail::touches_any(robot.data(), forbidden)) {
+      result.status = NavigationStatus::collided;
       result.collided = true;
       result.message = "touched an obstacle at t = " + std::to_string(result.time) + " s";
       break;
     }
     if (result.final_distance <= options.reach_distance) {
+      result.status = NavigationStatus::reached;
       result.reached = true;
       break;
     }
     if (result.time >= limit) {
+      result.status = NavigationStatus::timed_out;
       result.message = "time limit " + std::to_string(limit) + " s";
       break;
     }

@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
 
 namespace walkgen {
 

@@ -63,27 +63,28 @@ struct DepthObstacleSettings {
   double margin = 0.0;       ///< [m] CircleObstacle::margin of every obstacle (foot, safety)
 };
 
-namespace detail {
-
-inline void check_obstacle_settings(const DepthObstacleSettings& s) {
-  check_positive("DepthObstacleSettings: min_depth", s.min_depth);
-  check_argument(s.max_depth > s.min_depth, "DepthObstacleSettings: max_depth",
+/// Checks the extraction's settings (depth_to_points() and obstacles_from_depth() call this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const DepthObstacleSettings& s) {
+  check_positive("DepthObstacleSettings.min_depth", s.min_depth);
+  check_argument(s.max_depth > s.min_depth, "DepthObstacleSettings.max_depth",
                  "a depth > min_depth", s.max_depth);
-  check_argument(s.max_height > s.floor_height, "DepthObstacleSettings: max_height",
+  check_argument(s.max_height > s.floor_height, "DepthObstacleSettings.max_height",
                  "a height > floor_height", s.max_height);
-  check_positive("DepthObstacleSettings: cell_size", s.cell_size);
-  check_non_negative("DepthObstacleSettings: cluster_gap", s.cluster_gap);
-  check_argument(s.min_points >= 3, "DepthObstacleSettings: min_points", "at least 3",
-                 s.min_points);
-  check_argument(s.pixel_stride >= 1, "DepthObstacleSettings: pixel_stride", "at least 1",
+  check_positive("DepthObstacleSettings.cell_size", s.cell_size);
+  check_non_negative("DepthObstacleSettings.cluster_gap", s.cluster_gap);
+  check_argument(s.min_points >= 3, "DepthObstacleSettings.min_points", "at least 3", s.min_points);
+  check_argument(s.pixel_stride >= 1, "DepthObstacleSettings.pixel_stride", "at least 1",
                  s.pixel_stride);
   check_argument(s.width_quantile >= 0.0 && s.width_quantile < 0.5,
-                 "DepthObstacleSettings: width_quantile", "a fraction in [0, 0.5)",
+                 "DepthObstacleSettings.width_quantile", "a fraction in [0, 0.5)",
                  s.width_quantile);
-  check_non_negative("DepthObstacleSettings: min_radius", s.min_radius);
-  check_non_negative("DepthObstacleSettings: margin", s.margin);
-  check_non_negative("DepthObstacleSettings: max_relative_step", s.max_relative_step);
+  check_non_negative("DepthObstacleSettings.min_radius", s.min_radius);
+  check_non_negative("DepthObstacleSettings.margin", s.margin);
+  check_non_negative("DepthObstacleSettings.max_relative_step", s.max_relative_step);
 }
+
+namespace detail {
 
 /// The q-quantile of `values` (reordered).
 inline double quantile(std::vector<double>& values, double q) {
@@ -102,7 +103,7 @@ inline double quantile(std::vector<double>& values, double q) {
 inline void depth_to_points(const cv::Mat& depth, const PinholeIntrinsics& k,
                             const Eigen::Isometry3d& pose_W_C, const DepthObstacleSettings& s,
                             std::vector<Eigen::Vector3d>& points_W) {
-  detail::check_obstacle_settings(s);
+  validate(s);
   check_argument(
       !depth.empty() && depth.type() == CV_32F, "walkgen::depth_to_points: depth",
       "a non-empty CV_32F image of depths [m]",

@@ -73,8 +73,47 @@ struct CalibrationSettings {
   bool skip_views_without_board = false;
 };
 
+/// Checks the board (find_chessboard() and the calibrations call this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const ChessboardSettings& b) {
+  check_argument(b.columns >= 2, "ChessboardSettings.columns", "at least 2 inner corners",
+                 b.columns);
+  check_argument(b.rows >= 2, "ChessboardSettings.rows", "at least 2 inner corners", b.rows);
+  check_positive("ChessboardSettings.square_size", b.square_size);
+  check_argument(b.subpixel_half_window >= 1, "ChessboardSettings.subpixel_half_window",
+                 "a half window >= 1 px", b.subpixel_half_window);
+}
+
+/// Checks a calibration's settings, its board included (the calibrations call this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const CalibrationSettings& s) {
+  validate(s.board);
+  check_argument(s.rectify_alpha == -1.0 || (s.rectify_alpha >= 0.0 && s.rectify_alpha <= 1.0),
+                 "CalibrationSettings.rectify_alpha", "-1 (OpenCV's default) or a value in [0, 1]",
+                 s.rectify_alpha);
+}
+
+/// Whether a calibration's numbers can be used (convention 10c: a numerical outcome, not thrown).
+enum class CalibrationStatus : std::uint8_t {
+  ok,          ///< every matrix and error is finite
+  non_finite,  ///< OpenCV returned NaN or inf (degenerate views): do not use the result
+};
+
+/// "ok" or "non_finite", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(CalibrationStatus status) noexcept {
+  switch (status) {
+    case CalibrationStatus::ok:
+      return "ok";
+    case CalibrationStatus::non_finite:
+      return "non_finite";
+  }
+  return "unknown";
+}
+
 /// One camera's intrinsics (Table 10.1) and how well they fit.
 struct MonoCalibration {
+  CalibrationStatus status = CalibrationStatus::ok;
+  const char* message = "";  ///< which numbers are not finite; empty when ok
   cv::Size image_size;
   cv::Mat camera_matrix;  ///< K (3 × 3, CV_64F), eq. 3.9
   cv::Mat distortion;  ///< (k₁, k₂, p₁, p₂, k₃[, …]) (1 × n, CV_64F), eq. 3.10–3.11
@@ -85,6 +124,8 @@ struct MonoCalibration {
 
 /// A calibrated and rectified stereo pair (Tables 10.1–10.2).
 struct StereoCalibration {
+  CalibrationStatus status = CalibrationStatus::ok;  ///< ok: both cameras' and the pair's too
+  const char* message = "";  ///< which numbers are not finite; empty when ok
   MonoCalibration left;
   MonoCalibration right;
   cv::Mat rotation;     ///< R (3 × 3): right camera from left camera
@@ -144,15 +185,6 @@ inline std::vector<cv::Point3f> board_points(const ChessboardSettings& b) {
   return points;
 }
 
-inline void check_board(const ChessboardSettings& b) {
-  check_argument(b.columns >= 2 && b.rows >= 2, "ChessboardSettings: columns x rows",
-                 "at least 2x2 inner corners",
-                 std::to_string(b.columns) + "x" + std::to_string(b.rows));
-  check_positive("ChessboardSettings: square_size", b.square_size);
-  check_argument(b.subpixel_half_window >= 1, "ChessboardSettings: subpixel_half_window",
-                 "a half window >= 1 px", b.subpixel_half_window);
-}
-
 /// Sum of squared re-projection errors and corner count of one view.
 inline std::pair<double, std::size_t> reprojection(const std::vector<cv::Point3f>& object,
                                                    const std::vector<cv::Point2f>& image,
@@ -166,6 +198,22 @@ inline std::pair<double, std::size_t> reprojection(const std::vector<cv::Point3f
     sum += static_cast<double>(e.x) * e.x + static_cast<double>(e.y) * e.y;
   }
   return {sum, image.size()};
+}
+
+/// True when every entry of every matrix is finite (an empty matrix is).
+inline bool all_finite(std::initializer_list<cv::Mat> matrices) {
+  for (const cv::Mat& m : matrices) {
+    if (!cv::checkRange(m)) return false;
+  }
+  return true;
+}
+
+/// A camera's status: ok when its intrinsics and errors are finite.
+inline void set_status(MonoCalibration& c) {
+  bool finite = all_finite({c.camera_matrix, c.distortion}) && std::isfinite(c.rms);
+  for (double e : c.view_rms) finite = finite && std::isfinite(e);
+  c.status = finite ? CalibrationStatus::ok : CalibrationStatus::non_finite;
+  c.message = finite ? "" : "OpenCV returned a non-finite camera matrix, distortion or error";
 }
 
 /// A view without the board: an error naming `where`, unless such views may be skipped.
@@ -186,7 +234,7 @@ inline void check_board_found(bool skip_allowed, const ChessboardSettings& board
 /// @throws walkgen::invalid_argument when the image is empty or the settings are invalid.
 inline std::vector<cv::Point2f> find_chessboard(const cv::Mat& image,
                                                 const ChessboardSettings& board, bool& found) {
-  detail::check_board(board);
+  validate(board);
   check_argument(!image.empty(), "walkgen::find_chessboard: image", "a non-empty image",
                  "an empty one");
   const cv::Mat grey = detail::to_grey(image);
@@ -208,12 +256,14 @@ inline std::vector<cv::Point2f> find_chessboard(const cv::Mat& image,
 /// Calibrates one camera from views of the chessboard (eq. 3.9–3.14): K with f_x = f_y when
 /// fix_aspect_ratio, and (k₁, k₂, p₁, p₂, k₃).
 /// @param names optional names of the views (file names), used in error messages.
-/// @throws walkgen::invalid_argument for empty images, images of different sizes, a view without
-///   the board (unless skip_views_without_board) or fewer than 3 usable views.
+/// @return the calibration; status non_finite (and a message) when OpenCV's fit is not finite.
+/// @throws walkgen::invalid_argument for invalid settings (validate()), empty images, images of
+///   different sizes, a view without the board (unless skip_views_without_board) or fewer than
+///   3 usable views.
 inline MonoCalibration calibrate_camera(const std::vector<cv::Mat>& images,
                                         const CalibrationSettings& settings = {},
                                         const std::vector<std::string>& names = {}) {
-  detail::check_board(settings.board);
+  validate(settings);
   check_argument(images.size() >= 3, "walkgen::calibrate_camera: images", "at least 3 views",
                  images.size());
   MonoCalibration result;
@@ -250,6 +300,7 @@ inline MonoCalibration calibrate_camera(const std::vector<cv::Mat>& images,
                                                tvecs[v], result.camera_matrix, result.distortion);
     result.view_rms.push_back(std::sqrt(sum / static_cast<double>(n)));
   }
+  detail::set_status(result);
   return result;
 }
 
@@ -257,14 +308,16 @@ inline MonoCalibration calibrate_camera(const std::vector<cv::Mat>& images,
 /// eq. 3.15; §10.1): both intrinsics, R, T, E, F, R₁, R₂, P₁, P₂ and Q. Intrinsics start from
 /// cv::initCameraMatrix2D and are refined jointly with the relative pose.
 /// @param names optional names of the pairs (e.g. the left file names) for error messages.
-/// @throws walkgen::invalid_argument for differing numbers of left and right views, empty
-///   images, images of different sizes, a pair without the board in both images (unless
-///   skip_views_without_board) or fewer than 3 usable pairs.
+/// @return the calibration; status non_finite (and a message) when a number of OpenCV's fit
+///   (intrinsics, pose, rectification, errors) is not finite.
+/// @throws walkgen::invalid_argument for invalid settings (validate()), differing numbers of
+///   left and right views, empty images, images of different sizes, a pair without the board in
+///   both images (unless skip_views_without_board) or fewer than 3 usable pairs.
 inline StereoCalibration calibrate_stereo(const std::vector<cv::Mat>& left,
                                           const std::vector<cv::Mat>& right,
                                           const CalibrationSettings& settings = {},
                                           const std::vector<std::string>& names = {}) {
-  detail::check_board(settings.board);
+  validate(settings);
   check_argument(left.size() == right.size(), "walkgen::calibrate_stereo: right views",
                  "as many as left views (" + std::to_string(left.size()) + ")", right.size());
   check_argument(left.size() >= 3, "walkgen::calibrate_stereo: pairs", "at least 3 pairs",
@@ -371,6 +424,18 @@ inline StereoCalibration calibrate_stereo(const std::vector<cv::Mat>& left,
                     translation, result.rectification_left, result.rectification_right,
                     result.projection_left, result.projection_right, result.disparity_to_depth,
                     cv::CALIB_ZERO_DISPARITY, settings.rectify_alpha, size);
+  detail::set_status(result.left);
+  detail::set_status(result.right);
+  const bool finite = result.left.status == CalibrationStatus::ok &&
+                      result.right.status == CalibrationStatus::ok && std::isfinite(result.rms) &&
+                      std::isfinite(result.mean_epipolar_error) &&
+                      detail::all_finite({result.rotation, result.translation, result.essential,
+                                          result.fundamental, result.rectification_left,
+                                          result.rectification_right, result.projection_left,
+                                          result.projection_right, result.disparity_to_depth});
+  result.status = finite ? CalibrationStatus::ok : CalibrationStatus::non_finite;
+  result.message =
+      finite ? "" : "OpenCV returned a non-finite intrinsic, pose, rectification or error";
   return result;
 }
 

@@ -24,6 +24,7 @@
 /// walkgen::invalid_argument.
 
 #include <cmath>
+#include <cstdint>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -82,8 +83,48 @@ struct StereoDepthSettings {
   bool rgb_input = false;
 };
 
+/// Checks the pipeline's parameters, including those OpenCV rejects (StereoDepth's
+/// constructors call this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const StereoDepthSettings& s) {
+  check_argument(s.block_size >= 5 && s.block_size <= 255 && s.block_size % 2 == 1,
+                 "StereoDepthSettings.block_size", "an odd N in 5..255", s.block_size);
+  check_argument(s.num_disparities > 0 && s.num_disparities % 16 == 0,
+                 "StereoDepthSettings.num_disparities", "a positive multiple of 16",
+                 s.num_disparities);
+  check_positive("StereoDepthSettings.lambda", s.lambda);
+  check_positive("StereoDepthSettings.sigma", s.sigma);
+  check_non_negative("StereoDepthSettings.left_right_threshold", s.left_right_threshold);
+  check_non_negative("StereoDepthSettings.min_confidence", s.min_confidence);
+  check_argument(s.prefilter_cap >= 1 && s.prefilter_cap <= 63, "StereoDepthSettings.prefilter_cap",
+                 "a value in 1..63", s.prefilter_cap);
+  check_argument(s.texture_threshold >= 0, "StereoDepthSettings.texture_threshold", "a value >= 0",
+                 s.texture_threshold);
+  check_argument(s.uniqueness_ratio >= 0, "StereoDepthSettings.uniqueness_ratio", "a value >= 0",
+                 s.uniqueness_ratio);
+}
+
+/// Whether a frame has any depth (a numerical outcome, convention 10c: not thrown).
+enum class DepthStatus : std::uint8_t {
+  ok,        ///< some pixels have a depth
+  no_depth,  ///< no pixel has one: a textureless or too near scene, or a wrong rectification
+};
+
+/// "ok" or "no_depth", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(DepthStatus status) noexcept {
+  switch (status) {
+    case DepthStatus::ok:
+      return "ok";
+    case DepthStatus::no_depth:
+      return "no_depth";
+  }
+  return "unknown";
+}
+
 /// One frame's images, all of the (rectified) input's size (views into the pipeline's buffers).
 struct StereoDepthFrame {
+  DepthStatus status = DepthStatus::no_depth;  ///< of the last compute()
+  const char* message = "";                    ///< why there is no depth; empty when ok
   cv::Mat left_grey, right_grey;  ///< G (CV_8U): the rectified grey images, guide of eq. 3.7
   cv::Mat disparity_left;         ///< D_left (CV_16S, 16 × px), raw block matching (eq. 3.2)
   cv::Mat disparity_right;        ///< D_right (CV_16S, 16 × px, negative), when wls
@@ -161,7 +202,8 @@ class StereoDepth {
   const StereoDepthSettings& settings() const { return settings_; }
   const cv::Mat& disparity_to_depth() const { return q_; }
 
-  /// Runs the pipeline on one pair; the returned frame lives until the next call.
+  /// Runs the pipeline on one pair; the returned frame lives until the next call. Its status is
+  /// no_depth (with a message) when no pixel got a depth.
   /// @throws walkgen::invalid_argument when an image is empty, the images differ in size or
   ///   type, or (with a calibration) are not of the calibrated size.
   const StereoDepthFrame& compute(const cv::Mat& left, const cv::Mat& right) {
@@ -221,6 +263,9 @@ class StereoDepth {
       cv::compare(frame_.confidence, settings_.min_confidence, unconfident_, cv::CMP_LT);
       frame_.depth.setTo(0.0f, unconfident_);
     }
+    const bool some = cv::countNonZero(frame_.depth) > 0;
+    frame_.status = some ? DepthStatus::ok : DepthStatus::no_depth;
+    frame_.message = some ? "" : "no pixel has a depth (no texture, too near, or not rectified)";
     return frame_;
   }
 
@@ -230,21 +275,7 @@ class StereoDepth {
  private:
   void create_matchers() {
     const StereoDepthSettings& s = settings_;
-    check_argument(s.block_size >= 5 && s.block_size <= 255 && s.block_size % 2 == 1,
-                   "StereoDepthSettings: block_size", "an odd N in 5..255", s.block_size);
-    check_argument(s.num_disparities > 0 && s.num_disparities % 16 == 0,
-                   "StereoDepthSettings: num_disparities", "a positive multiple of 16",
-                   s.num_disparities);
-    check_positive("StereoDepthSettings: lambda", s.lambda);
-    check_positive("StereoDepthSettings: sigma", s.sigma);
-    check_non_negative("StereoDepthSettings: left_right_threshold", s.left_right_threshold);
-    check_non_negative("StereoDepthSettings: min_confidence", s.min_confidence);
-    check_argument(s.prefilter_cap >= 1 && s.prefilter_cap <= 63,
-                   "StereoDepthSettings: prefilter_cap", "a value in 1..63", s.prefilter_cap);
-    check_argument(s.texture_threshold >= 0, "StereoDepthSettings: texture_threshold",
-                   "a value >= 0", s.texture_threshold);
-    check_argument(s.uniqueness_ratio >= 0, "StereoDepthSettings: uniqueness_ratio", "a value >= 0",
-                   s.uniqueness_ratio);
+    validate(s);
     cv::Ptr<cv::StereoBM> bm = cv::StereoBM::create(s.num_disparities, s.block_size);
     bm->setPreFilterType(cv::StereoBM::PREFILTER_XSOBEL);  // eq. 3.1
     bm->setPreFilterCap(s.prefilter_cap);

@@ -8,14 +8,33 @@
 ///
 /// Method: the dual active-set method of Goldfarb and Idnani (Math. Programming 27, 1983),
 /// which suits the small, dense, strictly convex QPs of walking pattern generation
-/// (thesis eq. 2.83–2.84). With H = L Lᵀ and the q active normals N (n × q) it keeps
-/// J = L⁻ᵀ Q and an upper-triangular R such that L⁻¹ N = Q [R; 0], i.e. J₁ᵀ N = R for the first
-/// q columns J₁ of J. Each active-set change updates J and R by one Householder reflection per
-/// added constraint or Givens rotations per dropped one: O(n²) work per active-set change.
+/// (thesis eq. 2.83–2.84). With H = L Lᵀ and the q active normals N (n × q) it keeps an
+/// orthogonal Q and an upper-triangular R such that L⁻¹ N = Q [R; 0], i.e. J₁ᵀ N = R for the
+/// first q columns J₁ of J = L⁻ᵀ Q. Each active-set change updates Q and R by one Householder
+/// reflection per added constraint or Givens rotations per dropped one: O(n²) work per change.
+///
+/// Every solve that cannot reuse the previous factorisation (after init(): H and A changed)
+/// refactorises its warm-start active set from scratch, and there J is not formed: Q is kept in
+/// product form, Q = P₀ P₁ ⋯ P_{r−1} W, the reflections P_k = I − β_k v_k v_kᵀ (v_k zero above
+/// row k) of a left-looking Householder QR of L⁻¹N, then the explicit orthogonal
+/// W = diag(I, W̃) that collects the changes made since (W̃ covers the columns from the first one
+/// that a later change touched; W = I until a constraint is dropped, and additions until then
+/// join the product as further P_k). Applying J or Jᵀ to a vector costs a triangular solve with
+/// L (block by block where H is block diagonal) and one pass over the v_k, about what a product
+/// with an explicit J costs, while the refactorisation of q constraints costs ≈ 2nq² − ⅔q³
+/// flops plus q solves instead of ≈ 4nq(n − q/2) for the updates of an explicit J and 2n²q for
+/// the products Jᵀn (walking MPC, N = 64: n = 152, q = 119, three blocks of H: 3.2 + 1.2 Mflop
+/// instead of 6.7 + 5.5). Cold starts (fewer than n/4 constraints to refactorise) and small
+/// problems (n < 32) keep J = L⁻ᵀQ explicitly instead: the many changes that follow a cold start
+/// cost less with it.
 ///
 /// Warm start: solve() begins from the previous solve's active set. After update(), which
 /// changes only g and the bounds, the factorisation of H *and* of that active set are reused, so
 /// a solve whose active set did not change costs a few matrix–vector products.
+///
+/// Data: the solver owns the problem's data (problem(), a QpData). init(H, g, A, ...) copies
+/// into them; a caller that assembles its QP every tick writes into problem() in place and calls
+/// init() (or update()) without arguments, so the data are never copied.
 ///
 /// Allocation: the constructor sizes every buffer. init(), update() and solve() never touch the
 /// heap afterwards (tests/qp/test_dense_qp_no_alloc.cpp proves it).
@@ -27,13 +46,16 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <type_traits>
 
 #include "walkgen/core/assert.hpp"
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/qp/detail/dense_qp_kernels.hpp"
 
 namespace walkgen {
 
@@ -95,6 +117,56 @@ struct QpSettings {
   bool compute_residuals = true;
 };
 
+namespace detail {
+/// One QpSettings field's check: its name, the range it must be in, whether it is, its value and
+/// the same as one static message (for QpResult::message).
+template <typename Scalar>
+struct QpSettingsCheck {
+  const char* field;
+  const char* expected;
+  const char* message;
+  bool ok;
+  Scalar value;
+};
+
+template <typename Scalar>
+std::array<QpSettingsCheck<Scalar>, 4> qp_settings_checks(const QpSettings<Scalar>& s) {
+  using std::isfinite;
+  const Scalar dep = s.dependency_tolerance;
+  return {
+      {{"QpSettings.max_iterations", "an integer >= 0 (0 picks a default)",
+        "QpSettings.max_iterations must be >= 0", s.max_iterations >= 0, Scalar(s.max_iterations)},
+       {"QpSettings.regularization", "a finite value >= 0",
+        "QpSettings.regularization must be finite and >= 0",
+        isfinite(s.regularization) && s.regularization >= Scalar(0), s.regularization},
+       {"QpSettings.primal_tolerance", "a finite value > 0",
+        "QpSettings.primal_tolerance must be finite and > 0",
+        isfinite(s.primal_tolerance) && s.primal_tolerance > Scalar(0), s.primal_tolerance},
+       {"QpSettings.dependency_tolerance", "a value in (0, 1)",
+        "QpSettings.dependency_tolerance must be in (0, 1)", dep > Scalar(0) && dep < Scalar(1),
+        dep}}};
+}
+
+/// The message of the first unusable QpSettings field, or nullptr.
+template <typename Scalar>
+const char* qp_settings_problem(const QpSettings<Scalar>& s) {
+  for (const auto& c : qp_settings_checks(s)) {
+    if (!c.ok) return c.message;
+  }
+  return nullptr;
+}
+}  // namespace detail
+
+/// Checks the solver's settings (DenseQp's constructor calls it; init() reports settings changed
+/// since through settings() as QpStatus::invalid_input, naming the field).
+/// @throws walkgen::invalid_argument naming the first bad field, its range and its value.
+template <typename Scalar>
+void validate(const QpSettings<Scalar>& s) {
+  for (const auto& c : detail::qp_settings_checks(s)) {
+    check_argument(c.ok, c.field, c.expected, c.value);
+  }
+}
+
 /// Result of solve(). Multipliers follow H x + g + Aᵀ y + z = 0 with y_i ≤ 0 where the lower
 /// side of row i is active, y_i ≥ 0 where its upper side is, 0 where inactive (z alike for bounds).
 template <typename Scalar = double, int Vars = Eigen::Dynamic, int Rows = Eigen::Dynamic>
@@ -128,6 +200,18 @@ constexpr int qp_constraint_layout(int vars, int rows) {
 }
 }  // namespace detail
 
+/// A QP's data, minimise ½xᵀHx + gᵀx subject to lb ≤ Ax ≤ ub and l ≤ x ≤ u (file comment).
+/// DenseQp owns one (DenseQp::problem()): a caller that assembles its QP every tick writes into
+/// it in place and calls init() / update() without arguments, so the data exist once.
+template <typename Scalar = double, int Vars = Eigen::Dynamic, int Rows = Eigen::Dynamic>
+struct QpData {
+  Eigen::Matrix<Scalar, Vars, Vars> H;  ///< n × n, symmetric positive definite
+  Eigen::Matrix<Scalar, Vars, 1> g;     ///< n
+  Eigen::Matrix<Scalar, Rows, Vars, detail::qp_constraint_layout(Vars, Rows)> A;  ///< m × n
+  Eigen::Matrix<Scalar, Rows, 1> lb, ub;  ///< m; ±∞ where a side is absent
+  Eigen::Matrix<Scalar, Vars, 1> l, u;    ///< n; ±∞ where a side is absent
+};
+
 /// Dense strictly convex QP solver; see the file comment for the problem and the method.
 /// @tparam Scalar  floating-point type (double recommended; float works with looser tolerances)
 /// @tparam Vars    number of variables n, or Eigen::Dynamic
@@ -145,6 +229,7 @@ class DenseQp {
   using Index = Eigen::Index;
   using Settings = QpSettings<Scalar>;
   using Result = QpResult<Scalar, Vars, Rows>;
+  using Problem = QpData<Scalar, Vars, Rows>;
   using MatrixN = Eigen::Matrix<Scalar, Vars, Vars>;
   using VectorN = Eigen::Matrix<Scalar, Vars, 1>;
   using VectorM = Eigen::Matrix<Scalar, Rows, 1>;
@@ -159,6 +244,7 @@ class DenseQp {
   /// @throws walkgen::invalid_argument if n < 1, m < 0 or they contradict fixed sizes.
   DenseQp(Index num_vars, Index num_rows, const Settings& settings = Settings())
       : settings_(settings) {
+    validate(settings_);
     check_argument(num_vars >= 1, "DenseQp: num_vars", "n >= 1", num_vars);
     check_argument(num_rows >= 0, "DenseQp: num_rows", "m >= 0", num_rows);
     check_argument(Vars == Eigen::Dynamic || num_vars == Vars, "DenseQp: num_vars", Vars, num_vars,
@@ -167,16 +253,23 @@ class DenseQp {
                    "it must equal the compile-time Rows");
     n_ = num_vars;
     m_ = num_rows;
-    H_.setZero(n_, n_);
-    J0_.setZero(n_, n_);
-    J_.setZero(n_, n_);
+    w0_ = n_;
+    p_.H.setZero(n_, n_);
+    L_.setZero(n_, n_);
+    inv_diag_.setZero(n_);
+    rhs_.setZero(n_);
+    V_.setZero(n_, n_);
+    W_.setZero(n_, n_);
+    beta_.setZero(n_);
+    T_.setZero(n_ + kBlock, kBlock);
+    block_end_.setConstant(n_, static_cast<int>(n_));
     R_.setZero(n_, n_);
-    A_.setZero(m_, n_);
-    g_.setZero(n_);
-    lb_.setZero(m_);
-    ub_.setZero(m_);
-    l_.setZero(n_);
-    u_.setZero(n_);
+    p_.A.setZero(m_, n_);
+    p_.g.setZero(n_);
+    p_.lb.setZero(m_);
+    p_.ub.setZero(m_);
+    p_.l.setZero(n_);
+    p_.u.setZero(n_);
     row_norm_.setOnes(m_);
     Ax_.setZero(m_);
     x0_.setZero(n_);
@@ -184,6 +277,7 @@ class DenseQp {
     step_.setZero(n_);
     tmp_.setZero(n_);
     hh_.setZero(n_);
+    work_.setZero(n_);
     r_.setZero(n_);
     lambda_.setZero(n_);
     active_.setZero(n_);
@@ -207,6 +301,19 @@ class DenseQp {
   /// The result of the last solve().
   const Result& result() const { return result_; }
 
+  /// The problem's data, sized n and m at construction. Write them in place, then call init()
+  /// (or update() if only g and the bounds changed): no copy. Keep their sizes.
+  Problem& problem() { return p_; }
+  const Problem& problem() const { return p_; }
+
+  /// Validates and factorises problem() as it stands (see init(H, g, A, lb, ub, l, u)).
+  /// @throws walkgen::invalid_argument if problem()'s sizes were changed.
+  QpStatus init();
+  /// problem()'s g and bounds changed, H and A did not: keeps the factorisations (see
+  /// update(g, lb, ub)). H and A must be exactly those of the last init().
+  /// @throws walkgen::invalid_argument if problem()'s sizes were changed.
+  QpStatus update();
+
   /// Sets the whole problem and factorises H. Bounds l ≤ x ≤ u absent (±∞).
   /// @return QpStatus::unsolved when the data are usable, QpStatus::invalid_input otherwise.
   /// @throws walkgen::invalid_argument on mismatched sizes.
@@ -214,8 +321,8 @@ class DenseQp {
   QpStatus init(const Eigen::MatrixBase<DH>& H, const Eigen::MatrixBase<Dg>& g,
                 const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<Dlb>& lb,
                 const Eigen::MatrixBase<Dub>& ub) {
-    l_.setConstant(-kInf);
-    u_.setConstant(kInf);
+    p_.l.setConstant(-kInf);
+    p_.u.setConstant(kInf);
     return init_impl(H, g, A, lb, ub, static_cast<const VectorN*>(nullptr),
                      static_cast<const VectorN*>(nullptr));
   }
@@ -282,6 +389,16 @@ class DenseQp {
 
  private:
   static constexpr Scalar kInf = std::numeric_limits<Scalar>::infinity();
+  // Reflections applied together (append_reflection()), columns of L per pass in the solves
+  // with L (detail::lower_solve()): the fastest of 3, 4, 6, 8 (and 2, 4, 6, 8) on the walking
+  // MPC's QPs, N = 8 to 64.
+  static constexpr int kBlock = 6;
+  static constexpr int kPanel = 4;
+  // The product form is used for problems of at least kProductMinVars variables when a
+  // refactorisation from scratch takes at least n / 4 constraints (rebuild_factorization()):
+  // on the walking MPC's QPs, n = 19 (N = 8) is faster with J explicit, n = 38 (N = 16) in
+  // product form.
+  static constexpr Index kProductMinVars = 32;
   // Constraint codes: c < m is general row c, c >= m is the bound on variable c - m.
   // Signs: +1 lower side (normal a, bound lb), -1 upper side (normal -a, bound -ub).
 
@@ -293,6 +410,7 @@ class DenseQp {
   template <typename Dg, typename Dlb, typename Dub, typename Dl, typename Du>
   QpStatus update_impl(const Eigen::MatrixBase<Dg>& g, const Eigen::MatrixBase<Dlb>& lb,
                        const Eigen::MatrixBase<Dub>& ub, const Dl* l, const Du* u);
+  void check_problem_sizes(const char* where) const;
   template <typename Dg, typename Dlb, typename Dub, typename Dl, typename Du>
   void check_vector_sizes(const char* where, const Eigen::MatrixBase<Dg>& g,
                           const Eigen::MatrixBase<Dlb>& lb, const Eigen::MatrixBase<Dub>& ub,
@@ -309,12 +427,12 @@ class DenseQp {
   template <typename Dg, typename Dlb, typename Dub, typename Dl, typename Du>
   void store_vectors(const Eigen::MatrixBase<Dg>& g, const Eigen::MatrixBase<Dlb>& lb,
                      const Eigen::MatrixBase<Dub>& ub, const Dl* l, const Du* u) {
-    g_ = g;
-    lb_ = lb;
-    ub_ = ub;
+    p_.g = g;
+    p_.lb = lb;
+    p_.ub = ub;
     if (l != nullptr) {
-      l_ = *l;
-      u_ = *u;
+      p_.l = *l;
+      p_.u = *u;
     }
   }
   const char* validate_vectors() const;
@@ -325,25 +443,56 @@ class DenseQp {
   bool is_equality(int c) const { return is_row(c) ? row_eq_[c] != 0 : bound_eq_[c - m_] != 0; }
   /// Bound b of constraint c on side s in the form nᵀx ≥ b.
   Scalar bound_of(int c, int s) const {
-    if (is_row(c)) return s > 0 ? lb_[c] : -ub_[c];
-    return s > 0 ? l_[c - m_] : -u_[c - m_];
+    if (is_row(c)) return s > 0 ? p_.lb[c] : -p_.ub[c];
+    return s > 0 ? p_.l[c - m_] : -p_.u[c - m_];
   }
   /// nᵀv for constraint c on side s.
   template <typename V>
   Scalar normal_dot(int c, int s, const V& v) const {
-    const Scalar dot = is_row(c) ? Scalar(A_.row(c).dot(v)) : Scalar(v[c - m_]);
+    const Scalar dot = is_row(c) ? Scalar(p_.A.row(c).dot(v)) : Scalar(v[c - m_]);
     return s > 0 ? dot : -dot;
   }
   signed char& state_of(int c) { return is_row(c) ? row_state_[c] : bound_state_[c - m_]; }
-  /// d = Jᵀ n for constraint c on side s.
+  /// d = Jᵀ n (= Qᵀ L⁻¹ n in product form) for constraint c on side s.
   void compute_d(int c, int s) {
+    if (explicit_j_) {
+      if (is_row(c)) {
+        d_.noalias() = W_.transpose() * p_.A.row(c).transpose();
+      } else {
+        d_ = W_.row(c - m_).transpose();
+      }
+      if (s < 0) d_ = -d_;
+      return;
+    }
     if (is_row(c)) {
-      d_.noalias() = J_.transpose() * A_.row(c).transpose();
+      d_ = p_.A.row(c).transpose();
     } else {
-      d_ = J_.row(c - m_).transpose();
+      d_.setZero();
+      d_[c - m_] = Scalar(1);
     }
     if (s < 0) d_ = -d_;
+    solve_with_l<false>(d_);
+    apply_qt(d_);
   }
+  /// v ← J v (= L⁻ᵀ Q v in product form) for v zero outside [first, first + count).
+  void apply_j(VectorN& v, Index first, Index count) {
+    if (explicit_j_) {
+      work_.noalias() = W_.middleCols(first, count) * v.segment(first, count);
+      v = work_;
+      return;
+    }
+    apply_q(v);
+    solve_with_l<true>(v);
+  }
+  template <bool Transposed>
+  void solve_with_l(VectorN& v) const;
+  void apply_qt(VectorN& v);
+  void apply_q(VectorN& v);
+  void extend_w(Index k);
+  void form_j0();
+  void append_reflection(Scalar beta);
+  template <bool Transposed>
+  void apply_group(Index k0, VectorN& v) const;
   bool dependent(Index q) const {
     const Scalar tail = d_.tail(n_ - q).norm();
     return tail <= settings_.dependency_tolerance * d_.norm();
@@ -352,6 +501,8 @@ class DenseQp {
   void drop_from_factorization(Index k);
   void add_active(int c, int s, Scalar lambda);
   void solve_active_set();
+  void solve_multipliers();
+  void update_x();
   bool drop_negative_multipliers();
   int find_violated(int* sign, Scalar* max_violation);
   void finish(QpStatus status, const char* message);
@@ -388,14 +539,25 @@ class DenseQp {
   Index m_ = 0;
   Index q_ = 0;  // active-set size
 
-  MatrixN H_;   // (regularised) Hessian, kept for residuals
-  MatrixN J0_;  // L⁻ᵀ (upper triangular)
-  MatrixN J_;   // L⁻ᵀ Q
-  MatrixN R_;   // upper triangular, top-left q×q used
-  MatrixA A_;
-  VectorN g_, l_, u_;
-  VectorM lb_, ub_, row_norm_, Ax_;
-  VectorN x0_, d_, step_, tmp_, hh_, r_, lambda_;
+  Problem p_;  // the data, owned once (problem())
+  MatrixN L_;  // H = L Lᵀ: the lower triangles of H's diagonal blocks (zero elsewhere)
+  // Product form (file comment), Q = P₀ ⋯ P_{r−1} W: column k < r of V_ holds v_k in rows
+  // k..n−1 (zeros above, within its group), with β_k in beta_ (0 for P_k = I); rows
+  // k0..k0+kBlock−1 of T_ hold the T of the group that starts at P_k0 (append_reflection());
+  // W_ holds W̃ in rows and columns w0_..n−1. Explicit form (explicit_j_): W_ holds J.
+  MatrixN V_;
+  Eigen::Matrix<Scalar, Vars == Eigen::Dynamic ? Eigen::Dynamic : Vars + kBlock, kBlock> T_;
+  MatrixN W_;
+  MatrixN R_;  // upper triangular, top-left q×q used
+  VectorM row_norm_, Ax_;
+  VectorN x0_, d_, step_, tmp_, hh_, work_, r_, lambda_, beta_;
+  VectorN inv_diag_;  // 1 / L_jj
+  VectorN rhs_;       // s = b − Nᵀx₀ of the active set (solve_active_set())
+  // H's diagonal blocks: [b, block_end_[b]) for each block's first variable b.
+  Eigen::Matrix<int, Vars, 1> block_end_;
+  Index reflections_ = 0;    // r
+  Index w0_ = 0;             // W = diag(I_w0, W̃)
+  bool explicit_j_ = false;  // J is kept explicitly (in W_) instead of Q in product form
   Eigen::Matrix<int, Vars, 1> active_;
   Eigen::Matrix<signed char, Vars, 1> active_sign_;
   Eigen::Matrix<int, Vars, 1> previous_active_;  // scratch for rebuilding a warm start
@@ -416,8 +578,9 @@ class DenseQp {
   bool factorized_ = false;
   const char* invalid_message_ = "init() has not been called";
   bool have_previous_ = false;  // active_[0..q_) holds a previous solve's active set
-  bool cache_valid_ = false;    // J_, R_ factorise that set for the current H and A
+  bool cache_valid_ = false;    // Q, R factorise that set for the current H and A
   Index num_equalities_ = 0;
+  Scalar regularization_ = Scalar(0);  // the ε that init() factorised H + εI with
 };
 
 // ------------------------------------------------------------------------------------------
@@ -455,24 +618,47 @@ QpStatus DenseQp<Scalar, Vars, Rows>::init_impl(
                  std::to_string(A.rows()) + " x " + std::to_string(A.cols()),
                  "m and n are fixed at construction");
   check_vector_sizes("DenseQp::init", g, lb, ub, l, u);
+  p_.H = H;
+  p_.A = A;
+  store_vectors(g, lb, ub, l, u);
+  return init();
+}
+
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::check_problem_sizes(const char* where) const {
+  check_argument(p_.H.rows() == n_ && p_.H.cols() == n_, where, "problem().H n x n",
+                 std::to_string(p_.H.rows()) + " x " + std::to_string(p_.H.cols()));
+  check_argument(p_.A.rows() == m_ && p_.A.cols() == n_, where, "problem().A m x n",
+                 std::to_string(p_.A.rows()) + " x " + std::to_string(p_.A.cols()));
+  check_vector_sizes(where, p_.g, p_.lb, p_.ub, &p_.l, &p_.u);
+}
+
+template <typename Scalar, int Vars, int Rows>
+QpStatus DenseQp<Scalar, Vars, Rows>::init() {
+  check_problem_sizes("DenseQp::init");
   cache_valid_ = false;
   result_.status = QpStatus::unsolved;
   result_.message = "";
-  H_ = H;
-  A_ = A;
-  store_vectors(g, lb, ub, l, u);
-  if (!detail::all_finite(H_)) return invalid("H has a NaN or Inf entry");
-  if (!detail::all_finite(A_)) return invalid("A has a NaN or Inf entry");
-  const Scalar h_scale = H_.cwiseAbs().maxCoeff();
-  for (Index i = 0; i < n_; ++i) {
-    for (Index j = 0; j < i; ++j) {
-      if (std::abs(H_(i, j) - H_(j, i)) >
-          Scalar(1e3) * Eigen::NumTraits<Scalar>::epsilon() * (Scalar(1) + h_scale)) {
-        return invalid("H is not symmetric");
-      }
+  if (!detail::all_finite(p_.H)) return invalid("H has a NaN or Inf entry");
+  // Row norms, and from them A's finiteness: a norm that is not finite comes from a NaN or Inf
+  // entry, or from entries so large that the square overflows (allowed).
+  bool a_finite = true;
+  for (Index i = 0; i < m_; ++i) {
+    row_norm_[i] = p_.A.row(i).norm();
+    if (!std::isfinite(row_norm_[i])) a_finite = a_finite && detail::all_finite(p_.A.row(i));
+  }
+  if (!a_finite) return invalid("A has a NaN or Inf entry");
+  const Scalar h_scale = p_.H.cwiseAbs().maxCoeff();
+  // Symmetry, |H_ij − H_ji| within rounding of H's scale: one comparison per pair, and no
+  // running maximum (its dependency chain cost more than the rest of init() for walking QPs).
+  const Scalar sym_tol = Scalar(1e3) * Eigen::NumTraits<Scalar>::epsilon() * (Scalar(1) + h_scale);
+  bool symmetric = true;
+  for (Index j = 0; j < n_; ++j) {
+    for (Index i = j + 1; i < n_; ++i) {
+      symmetric &= std::abs(p_.H(i, j) - p_.H(j, i)) <= sym_tol;
     }
   }
-  for (Index i = 0; i < m_; ++i) row_norm_[i] = A_.row(i).norm();
+  if (!symmetric) return invalid("H is not symmetric");
   if (const char* why = validate_vectors()) return invalid(why);
   if (const char* why = factorize()) return invalid(why);
   bool changed = false;
@@ -488,9 +674,15 @@ QpStatus DenseQp<Scalar, Vars, Rows>::update_impl(const Eigen::MatrixBase<Dg>& g
                                                   const Eigen::MatrixBase<Dub>& ub, const Dl* l,
                                                   const Du* u) {
   check_vector_sizes("DenseQp::update", g, lb, ub, l, u);
+  store_vectors(g, lb, ub, l, u);
+  return update();
+}
+
+template <typename Scalar, int Vars, int Rows>
+QpStatus DenseQp<Scalar, Vars, Rows>::update() {
+  check_problem_sizes("DenseQp::update");
   result_.status = QpStatus::unsolved;
   result_.message = "";
-  store_vectors(g, lb, ub, l, u);
   if (!factorized_) return invalid("update() needs a successful init() first");
   if (const char* why = validate_vectors()) return invalid(why);
   bool changed = false;
@@ -506,19 +698,19 @@ QpStatus DenseQp<Scalar, Vars, Rows>::update_impl(const Eigen::MatrixBase<Dg>& g
 
 template <typename Scalar, int Vars, int Rows>
 const char* DenseQp<Scalar, Vars, Rows>::validate_vectors() const {
-  if (!detail::all_finite(g_)) return "g has a NaN or Inf entry";
+  if (!detail::all_finite(p_.g)) return "g has a NaN or Inf entry";
   for (Index i = 0; i < m_; ++i) {
-    if (std::isnan(lb_[i]) || std::isnan(ub_[i])) return "lb or ub has a NaN entry";
-    if (lb_[i] == kInf || ub_[i] == -kInf) return "lb = +inf or ub = -inf in some row";
-    if (lb_[i] > ub_[i]) return "lb > ub in some row";
-    if (row_norm_[i] == Scalar(0) && (lb_[i] > Scalar(0) || ub_[i] < Scalar(0))) {
+    if (std::isnan(p_.lb[i]) || std::isnan(p_.ub[i])) return "lb or ub has a NaN entry";
+    if (p_.lb[i] == kInf || p_.ub[i] == -kInf) return "lb = +inf or ub = -inf in some row";
+    if (p_.lb[i] > p_.ub[i]) return "lb > ub in some row";
+    if (row_norm_[i] == Scalar(0) && (p_.lb[i] > Scalar(0) || p_.ub[i] < Scalar(0))) {
       return "a zero row of A has bounds that exclude 0";
     }
   }
   for (Index j = 0; j < n_; ++j) {
-    if (std::isnan(l_[j]) || std::isnan(u_[j])) return "l or u has a NaN entry";
-    if (l_[j] == kInf || u_[j] == -kInf) return "l = +inf or u = -inf for some variable";
-    if (l_[j] > u_[j]) return "l > u for some variable";
+    if (std::isnan(p_.l[j]) || std::isnan(p_.u[j])) return "l or u has a NaN entry";
+    if (p_.l[j] == kInf || p_.u[j] == -kInf) return "l = +inf or u = -inf for some variable";
+    if (p_.l[j] > p_.u[j]) return "l > u for some variable";
   }
   return nullptr;
 }
@@ -526,51 +718,40 @@ const char* DenseQp<Scalar, Vars, Rows>::validate_vectors() const {
 template <typename Scalar, int Vars, int Rows>
 const char* DenseQp<Scalar, Vars, Rows>::factorize() {
   factorized_ = false;
-  if (!(settings_.regularization >= Scalar(0)) || !std::isfinite(settings_.regularization)) {
-    return "settings.regularization must be finite and >= 0";
-  }
-  H_.diagonal().array() += settings_.regularization;
+  if (const char* why = detail::qp_settings_problem(settings_)) return why;
+  // H + εI is factorised; p_.H stays H (the caller may assemble into it in place).
+  const Scalar epsilon = regularization_ = settings_.regularization;
   // H is factorised block by block where it is block diagonal (contiguous blocks with exactly
-  // zero coupling), as walking QPs are (x, y and yaw decouple): O(Σ b³) instead of O(n³).
-  // Left-looking Cholesky H_b = L_b L_bᵀ into J_ (scratch), then J0 = L⁻ᵀ column by column.
-  auto& L = J_;  // only the blocks' lower triangles are written and read
-  J0_.setZero();
+  // zero coupling), as walking QPs are (x, y and yaw decouple): O(Σ b³) instead of O(n³), and
+  // the solves with L cost O(Σ b²). Left-looking Cholesky H_b = L_b L_bᵀ into L_.
+  auto& L = L_;  // only the blocks' lower triangles are written and read
   Scalar max_diag = Scalar(0);
   Scalar min_diag = kInf;
   Index start = 0;
   Index reach = 0;
   for (Index i = 0; i < n_; ++i) {
     Index last = n_ - 1;  // last nonzero of row i = of column i (H is symmetric)
-    while (last > reach && H_(last, i) == Scalar(0)) --last;
+    while (last > reach && p_.H(last, i) == Scalar(0)) --last;
     reach = std::max(reach, last);
     if (reach > i) continue;
     // Block [start, i].
-    const Index b = i + 1 - start;
+    block_end_[start] = static_cast<int>(i + 1);
     for (Index j = start; j <= i; ++j) {
       const Index k = j - start;
       auto col = tmp_.segment(j, i + 1 - j);
-      col.noalias() = H_.col(j).segment(j, i + 1 - j) -
+      col.noalias() = p_.H.col(j).segment(j, i + 1 - j) -
                       L.block(j, start, i + 1 - j, k) * L.block(j, start, 1, k).transpose();
+      col[0] += epsilon;
       if (!(col[0] > Scalar(0))) {
         return "H is not positive definite (hint: set settings.regularization > 0 for PSD H)";
       }
       const Scalar diag = std::sqrt(col[0]);
       L(j, j) = diag;
+      inv_diag_[j] = Scalar(1) / diag;
       L.col(j).segment(j + 1, i - j) = col.tail(i - j) / diag;
       max_diag = std::max(max_diag, diag);
       min_diag = std::min(min_diag, diag);
     }
-    for (Index j = start; j <= i; ++j) {
-      const Index k = j - start + 1;
-      auto y = J0_.col(j).segment(start, k);
-      y.setZero();
-      y[k - 1] = Scalar(1);
-      L.block(start, start, k, k)
-          .transpose()
-          .template triangularView<Eigen::Upper>()
-          .solveInPlace(y);
-    }
-    (void)b;
     start = i + 1;
     reach = start;
   }
@@ -586,13 +767,13 @@ void DenseQp<Scalar, Vars, Rows>::refresh_equalities(bool* pattern_changed) {
   bool changed = false;
   Index count = 0;
   for (Index i = 0; i < m_; ++i) {
-    const signed char eq = lb_[i] == ub_[i] ? 1 : 0;
+    const signed char eq = p_.lb[i] == p_.ub[i] ? 1 : 0;
     changed = changed || eq != row_eq_[i];
     row_eq_[i] = eq;
     count += eq;
   }
   for (Index j = 0; j < n_; ++j) {
-    const signed char eq = l_[j] == u_[j] ? 1 : 0;
+    const signed char eq = p_.l[j] == p_.u[j] ? 1 : 0;
     changed = changed || eq != bound_eq_[j];
     bound_eq_[j] = eq;
     count += eq;
@@ -601,39 +782,198 @@ void DenseQp<Scalar, Vars, Rows>::refresh_equalities(bool* pattern_changed) {
   *pattern_changed = changed;
 }
 
+// v ← L⁻¹ v (forward substitution; zeros that lead a block's part of v, as in a constraint row
+// that reaches few variables of the block, cost nothing), or v ← L⁻ᵀ v when Transposed (back
+// substitution; trailing zeros alike), block by block.
+template <typename Scalar, int Vars, int Rows>
+template <bool Transposed>
+void DenseQp<Scalar, Vars, Rows>::solve_with_l(VectorN& v) const {
+  for (Index start = 0; start < n_;) {
+    const Index end = block_end_[start];
+    const Scalar* L = &L_.coeffRef(start, start);
+    if (Transposed) {
+      detail::upper_solve<kPanel>(L, L_.outerStride(), &inv_diag_[start], &v[start], end - start);
+    } else {
+      detail::lower_solve<kPanel>(L, L_.outerStride(), &inv_diag_[start], &v[start], end - start);
+    }
+    start = end;
+  }
+}
+
+// v ← Gᵀ v (Transposed) or v ← G v for the group G = P_k0 ⋯ P_k0+kBlock−1 = I − V T Vᵀ.
+// Fewer than kBlock rows are left only when nearly n constraints are active.
+template <typename Scalar, int Vars, int Rows>
+template <bool Transposed>
+void DenseQp<Scalar, Vars, Rows>::apply_group(Index k0, VectorN& v) const {
+  const Index rows = n_ - k0;
+  auto y = v.tail(rows);
+  const auto T = T_.template block<kBlock, kBlock>(k0, 0);
+  if (rows >= kBlock) {
+    detail::apply_block_reflector<kBlock, Transposed>(&V_.coeffRef(k0, k0), V_.outerStride(), T,
+                                                      y.data(), rows);
+  } else {
+    const auto V = V_.block(k0, k0, rows, rows);
+    Eigen::Matrix<Scalar, Eigen::Dynamic, 1, 0, kBlock, 1> s = V.transpose() * y;
+    const auto Tr = T.topLeftCorner(rows, rows);
+    if (Transposed) {
+      s = Tr.transpose().template triangularView<Eigen::Lower>() * s;
+    } else {
+      s = Tr.template triangularView<Eigen::Upper>() * s;
+    }
+    y.noalias() -= V * s;
+  }
+}
+
+// v ← Qᵀ v = Wᵀ P_{r−1} ⋯ P₀ v.
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::apply_qt(VectorN& v) {
+  for (Index k0 = 0; k0 < reflections_; k0 += kBlock) apply_group<true>(k0, v);
+  if (w0_ < n_) {
+    const Index nw = n_ - w0_;
+    work_.head(nw).noalias() = W_.bottomRightCorner(nw, nw).transpose() * v.tail(nw);
+    v.tail(nw) = work_.head(nw);
+  }
+}
+
+// v ← Q v = P₀ ⋯ P_{r−1} W v.
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::apply_q(VectorN& v) {
+  if (w0_ < n_) {
+    const Index nw = n_ - w0_;
+    work_.head(nw).noalias() = W_.bottomRightCorner(nw, nw) * v.tail(nw);
+    v.tail(nw) = work_.head(nw);
+  }
+  if (reflections_ == 0) return;
+  for (Index k0 = (reflections_ - 1) / kBlock * kBlock; k0 >= 0; k0 -= kBlock) {
+    apply_group<false>(k0, v);
+  }
+}
+
+// Appends P_r = I − β v vᵀ (v in V_'s column r, rows r..n−1) to the product. Groups of kBlock
+// reflections are applied together in the compact WY form P_k0 ⋯ P_k0+kBlock−1 = I − V T Vᵀ
+// (Schreiber and Van Loan 1989; T upper triangular, column j: T(j,j) = β_j and
+// T(0:j,j) = −β_j T(0:j,0:j) V(:,0:j)ᵀ v_j), so that a vector passes a group in one product
+// with Vᵀ and one with V. The group's columns not yet used hold zeros (T's too): a partial group
+// is applied as a full one.
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::append_reflection(Scalar beta) {
+  const Index r = reflections_;
+  const Index k0 = r - r % kBlock;
+  const Index j = r - k0;
+  auto T = T_.template block<kBlock, kBlock>(k0, 0);
+  if (j == 0) {
+    T.setZero();
+    const Index cols = std::min<Index>(kBlock, n_ - k0);
+    V_.block(k0, k0 + 1, n_ - k0, cols - 1).setZero();
+  }
+  T(j, j) = beta;
+  if (j > 0 && n_ - k0 >= kBlock) {
+    // z = V(:,0:j)ᵀ v_j from all of the group's columns (those after j are zero).
+    Eigen::Matrix<Scalar, kBlock, 1> z = detail::block_dot<kBlock>(
+        &V_.coeffRef(k0, k0), V_.outerStride(), &V_.coeffRef(k0, r), n_ - k0);
+    z.tail(kBlock - j).setZero();
+    detail::upper_times<false>(T, z);
+    T.col(j).head(j) = -beta * z.head(j);
+  } else if (j > 0) {
+    auto t = T.col(j).head(j);
+    t.noalias() = V_.block(k0, k0, n_ - k0, j).transpose() * V_.col(r).tail(n_ - k0);
+    t = T.topLeftCorner(j, j).template triangularView<Eigen::Upper>() * t;
+    t *= -beta;
+  }
+  beta_[r] = beta;
+  ++reflections_;
+}
+
+// Explicit form, from scratch: W_ = J = L⁻ᵀ within each block of H (zero outside). Column j
+// solves Lᵀ y = e_j by back substitution, J(k,j) = −(Σ_{k<i≤j} L_ik J(i,j)) / L_kk, as a solve
+// would (so Jᵀn is as accurate as L⁻¹n by substitution); the rows are taken from the bottom
+// up, each for kBlock columns at a time (no dependency between them).
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::form_j0() {
+  W_.setZero();
+  for (Index start = 0; start < n_;) {
+    const Index end = block_end_[start];
+    const Index b = end - start;
+    auto J = W_.block(start, start, b, b);
+    for (Index k = b - 1; k >= 0; --k) {
+      const Scalar inv = inv_diag_[start + k];
+      J(k, k) = inv;
+      const auto l = L_.col(start + k).segment(start + k + 1, b - k - 1);  // L(k+1.., k)
+      Index j0 = k + 1;
+      for (; j0 + kBlock <= b; j0 += kBlock) {
+        const Eigen::Matrix<Scalar, kBlock, 1> t = detail::block_dot<kBlock>(
+            &J.coeffRef(k + 1, j0), W_.outerStride(), l.data(), j0 + kBlock - (k + 1));
+        J.row(k).segment(j0, kBlock) = -inv * t.transpose();
+      }
+      for (; j0 < b; ++j0) {
+        J(k, j0) = -inv * J.col(j0).segment(k + 1, j0 - k).dot(l.head(j0 - k));
+      }
+    }
+    start = end;
+  }
+}
+
+// Makes W̃ cover the columns (and rows) from k on: the new ones are those of the identity.
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::extend_w(Index k) {
+  if (k >= w0_) return;
+  const Index added = w0_ - k;
+  const Index kept = n_ - w0_;
+  W_.block(k, k, added, added).setIdentity();
+  W_.block(k, w0_, added, kept).setZero();
+  W_.block(w0_, k, kept, added).setZero();
+  w0_ = k;
+}
+
 // Appends the constraint whose d = Jᵀn is in d_ to the factorisation: one Householder reflection
-// maps d₂ = d_[q..n) onto σ e₁ and is applied to J's trailing columns; R gets column (d₁, σ).
+// P maps d₂ = d_[q..n) onto σ e₁ and R gets column (d₁, σ). Q ← Q P: right after a refactorisation
+// (W = I, q = r) P joins the product as P_q; otherwise it is applied to W's trailing columns.
 template <typename Scalar, int Vars, int Rows>
 void DenseQp<Scalar, Vars, Rows>::add_to_factorization(Index q) {
   const Index nq = n_ - q;
   WALKGEN_ASSERT(nq >= 1);
+  WALKGEN_ASSERT(w0_ < n_ || q == reflections_);
+  const bool append = w0_ == n_;
   R_.col(q).head(q) = d_.head(q);
   if (nq == 1) {
     R_(q, q) = d_[q];
+    if (append) {
+      V_(q, q) = Scalar(0);  // P = I
+      append_reflection(Scalar(0));
+    }
   } else {
     auto d2 = d_.tail(nq);
     const Scalar alpha = d2.norm();
     const Scalar x0 = d2[0];
     const Scalar sign = x0 >= Scalar(0) ? Scalar(1) : Scalar(-1);
-    auto v = hh_.head(nq);
-    v = d2;
-    v[0] += sign * alpha;
     const Scalar beta = Scalar(1) / (alpha * (alpha + std::abs(x0)));  // 2 / vᵀv
-    auto J2 = J_.rightCols(nq);
-    auto w = tmp_.head(n_);
-    w.noalias() = J2 * v;
-    w *= beta;
-    J2.noalias() -= w * v.transpose();
+    if (append) {
+      auto v = V_.col(q).tail(nq);
+      v = d2;
+      v[0] += sign * alpha;
+      append_reflection(beta);
+    } else {
+      auto v = hh_.head(nq);
+      v = d2;
+      v[0] += sign * alpha;
+      extend_w(q);
+      auto W2 = W_.block(w0_, q, n_ - w0_, nq);
+      auto w = tmp_.head(n_ - w0_);
+      w.noalias() = W2 * v;
+      w *= beta;
+      W2.noalias() -= w * v.transpose();
+    }
     R_(q, q) = -sign * alpha;
   }
   R_.col(q).tail(n_ - q - 1).setZero();
 }
 
 // Removes active constraint k: R loses column k and is made triangular again by Givens
-// rotations on rows (j, j+1), applied alike to J's columns (j, j+1).
+// rotations on rows (j, j+1), applied alike to Q's columns (j, j+1), i.e. to W's.
 template <typename Scalar, int Vars, int Rows>
 void DenseQp<Scalar, Vars, Rows>::drop_from_factorization(Index k) {
   for (Index j = k; j + 1 < q_; ++j) R_.col(j).head(j + 2) = R_.col(j + 1).head(j + 2);
+  extend_w(k);  // also when no rotation follows: later additions go to W, not after P_{r−1}
   for (Index j = k; j + 1 < q_; ++j) {
     const Scalar a = R_(j, j);
     const Scalar b = R_(j + 1, j);
@@ -648,11 +988,11 @@ void DenseQp<Scalar, Vars, Rows>::drop_from_factorization(Index k) {
       R_(j + 1, col) = -s * r1 + c * r2;
     }
     R_(j + 1, j) = Scalar(0);
-    for (Index i = 0; i < n_; ++i) {
-      const Scalar j1 = J_(i, j);
-      const Scalar j2 = J_(i, j + 1);
-      J_(i, j) = c * j1 + s * j2;
-      J_(i, j + 1) = -s * j1 + c * j2;
+    for (Index i = w0_; i < n_; ++i) {
+      const Scalar w1 = W_(i, j);
+      const Scalar w2 = W_(i, j + 1);
+      W_(i, j) = c * w1 + s * w2;
+      W_(i, j + 1) = -s * w1 + c * w2;
     }
   }
   const int c = active_[k];
@@ -680,17 +1020,35 @@ void DenseQp<Scalar, Vars, Rows>::add_active(int c, int s, Scalar lambda) {
 // with s = b − Nᵀx₀ (x₀ = −H⁻¹g): λ = R⁻¹R⁻ᵀ s and x = x₀ + J₁R⁻ᵀ s.
 template <typename Scalar, int Vars, int Rows>
 void DenseQp<Scalar, Vars, Rows>::solve_active_set() {
-  result_.x = x0_;
+  for (Index k = 0; k < q_; ++k) {
+    rhs_[k] = bound_of(active_[k], active_sign_[k]) - normal_dot(active_[k], active_sign_[k], x0_);
+  }
+  solve_multipliers();
+  update_x();
+}
+
+// λ = R⁻¹R⁻ᵀ s for s in rhs_; leaves R⁻ᵀ s in r_.
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::solve_multipliers() {
   if (q_ == 0) return;
   auto w = r_.head(q_);
-  for (Index k = 0; k < q_; ++k) {
-    w[k] = bound_of(active_[k], active_sign_[k]) - normal_dot(active_[k], active_sign_[k], x0_);
-  }
+  w = rhs_.head(q_);
   const auto Rq = R_.topLeftCorner(q_, q_);
   Rq.transpose().template triangularView<Eigen::Lower>().solveInPlace(w);
-  result_.x.noalias() += J_.leftCols(q_) * w;
-  Rq.template triangularView<Eigen::Upper>().solveInPlace(w);
-  lambda_.head(q_) = w;
+  auto lambda = lambda_.head(q_);
+  lambda = w;
+  Rq.template triangularView<Eigen::Upper>().solveInPlace(lambda);
+}
+
+// x = x₀ + J₁ R⁻ᵀ s with R⁻ᵀ s in r_ (solve_multipliers()).
+template <typename Scalar, int Vars, int Rows>
+void DenseQp<Scalar, Vars, Rows>::update_x() {
+  result_.x = x0_;
+  if (q_ == 0) return;
+  tmp_.head(q_) = r_.head(q_);
+  tmp_.tail(n_ - q_).setZero();
+  apply_j(tmp_, 0, q_);  // J₁ R⁻ᵀ s
+  result_.x += tmp_;
 }
 
 // Whether x is finite and every constraint, active and ignored ones included, holds within
@@ -704,20 +1062,20 @@ bool DenseQp<Scalar, Vars, Rows>::within_tolerance(bool ax_current) {
   const Scalar xscale = Scalar(1) + x.template lpNorm<Eigen::Infinity>();
   bool ok = true;
   Scalar max_abs_viol = Scalar(0);
-  if (m_ > 0 && !ax_current) Ax_.noalias() = A_ * x;
+  if (m_ > 0 && !ax_current) Ax_.noalias() = p_.A * x;
   for (Index i = 0; i < m_; ++i) {
-    const Scalar viol = std::max(lb_[i] - Ax_[i], Ax_[i] - ub_[i]);
+    const Scalar viol = std::max(p_.lb[i] - Ax_[i], Ax_[i] - p_.ub[i]);
     if (!(viol > Scalar(0))) continue;
     max_abs_viol = std::max(max_abs_viol, viol);
     if (row_norm_[i] == Scalar(0)) continue;  // a zero row constrains nothing it can reach
-    const Scalar bound = lb_[i] - Ax_[i] > Ax_[i] - ub_[i] ? lb_[i] : ub_[i];
+    const Scalar bound = p_.lb[i] - Ax_[i] > Ax_[i] - p_.ub[i] ? p_.lb[i] : p_.ub[i];
     ok = ok && viol / row_norm_[i] <= loose * (xscale + std::abs(bound) / row_norm_[i]);
   }
   for (Index j = 0; j < n_; ++j) {
-    const Scalar viol = std::max(l_[j] - x[j], x[j] - u_[j]);
+    const Scalar viol = std::max(p_.l[j] - x[j], x[j] - p_.u[j]);
     if (!(viol > Scalar(0))) continue;
     max_abs_viol = std::max(max_abs_viol, viol);
-    const Scalar bound = l_[j] - x[j] > x[j] - u_[j] ? l_[j] : u_[j];
+    const Scalar bound = p_.l[j] - x[j] > x[j] - p_.u[j] ? p_.l[j] : p_.u[j];
     ok = ok && viol <= loose * (xscale + std::abs(bound));
   }
   result_.primal_residual = max_abs_viol;
@@ -736,12 +1094,16 @@ void DenseQp<Scalar, Vars, Rows>::refine_active_set() {
   }
   const auto Rq = R_.topLeftCorner(q_, q_);
   Rq.transpose().template triangularView<Eigen::Lower>().solveInPlace(w);
-  result_.x.noalias() += J_.leftCols(q_) * w;
+  tmp_.head(q_) = w;
+  tmp_.tail(n_ - q_).setZero();
+  apply_j(tmp_, 0, q_);
+  result_.x += tmp_;
   Rq.template triangularView<Eigen::Upper>().solveInPlace(w);
   lambda_.head(q_) += w;
 }
 
-// Drops the most negative inequality multiplier until none is negative (warm start only).
+// Drops the most negative inequality multiplier until none is negative (warm start only), right
+// after solve_active_set(), as often as needed; x follows the final active set.
 template <typename Scalar, int Vars, int Rows>
 bool DenseQp<Scalar, Vars, Rows>::drop_negative_multipliers() {
   bool dropped = false;
@@ -755,11 +1117,15 @@ bool DenseQp<Scalar, Vars, Rows>::drop_negative_multipliers() {
         worst = k;
       }
     }
-    if (worst < 0) return dropped;
+    if (worst < 0) break;
     drop_from_factorization(worst);
-    solve_active_set();
+    // s = b − Nᵀx₀ loses the entry of the dropped constraint; x only matters at the end.
+    for (Index k = worst; k < q_; ++k) rhs_[k] = rhs_[k + 1];
+    solve_multipliers();
     dropped = true;
   }
+  if (dropped) update_x();
+  return dropped;
 }
 
 // The most violated inactive constraint (scaled by its normal's length), or -1.
@@ -771,16 +1137,16 @@ int DenseQp<Scalar, Vars, Rows>::find_violated(int* sign, Scalar* max_violation)
   int best = -1;
   Scalar best_viol = Scalar(0);
   Scalar max_abs_viol = Scalar(0);
-  if (m_ > 0) Ax_.noalias() = A_ * x;
+  if (m_ > 0) Ax_.noalias() = p_.A * x;
   for (Index i = 0; i < m_; ++i) {
     const Scalar v = Ax_[i];
-    const Scalar below = lb_[i] - v;
-    const Scalar above = v - ub_[i];
+    const Scalar below = p_.lb[i] - v;
+    const Scalar above = v - p_.ub[i];
     const Scalar viol = std::max(below, above);
     if (viol <= Scalar(0)) continue;
     max_abs_viol = std::max(max_abs_viol, viol);
     if (row_state_[i] != 0 || row_norm_[i] == Scalar(0)) continue;
-    const Scalar bound = below > above ? lb_[i] : ub_[i];
+    const Scalar bound = below > above ? p_.lb[i] : p_.ub[i];
     const Scalar scaled = viol / row_norm_[i];
     if (scaled > tol * (xscale + std::abs(bound) / row_norm_[i]) && scaled > best_viol) {
       best_viol = scaled;
@@ -789,13 +1155,13 @@ int DenseQp<Scalar, Vars, Rows>::find_violated(int* sign, Scalar* max_violation)
     }
   }
   for (Index j = 0; j < n_; ++j) {
-    const Scalar below = l_[j] - x[j];
-    const Scalar above = x[j] - u_[j];
+    const Scalar below = p_.l[j] - x[j];
+    const Scalar above = x[j] - p_.u[j];
     const Scalar viol = std::max(below, above);
     if (viol <= Scalar(0)) continue;
     max_abs_viol = std::max(max_abs_viol, viol);
     if (bound_state_[j] != 0) continue;
-    const Scalar bound = below > above ? l_[j] : u_[j];
+    const Scalar bound = below > above ? p_.l[j] : p_.u[j];
     if (viol > tol * (xscale + std::abs(bound)) && viol > best_viol) {
       best_viol = viol;
       best = static_cast<int>(m_ + j);
@@ -836,16 +1202,17 @@ void DenseQp<Scalar, Vars, Rows>::finish(QpStatus status, const char* message) {
   }
   if (!settings_.compute_residuals) return;
   const auto& x = result_.x;
-  step_.noalias() = H_.template selfadjointView<Eigen::Lower>() * x;  // Hx
-  result_.objective = Scalar(0.5) * x.dot(step_) + g_.dot(x);
-  step_ += g_;
+  step_.noalias() = p_.H.template selfadjointView<Eigen::Lower>() * x;  // (H + εI)x
+  step_ += regularization_ * x;
+  result_.objective = Scalar(0.5) * x.dot(step_) + p_.g.dot(x);
+  step_ += p_.g;
   step_ += result_.z;
   Scalar compl_max = Scalar(0);
   for (Index k = 0; k < q_; ++k) {
     const int c = active_[k];
     const Scalar slack = normal_dot(c, active_sign_[k], x) - bound_of(c, active_sign_[k]);
     if (is_row(c)) {
-      step_.noalias() += A_.row(c).transpose() * result_.y[c];
+      step_.noalias() += p_.A.row(c).transpose() * result_.y[c];
       compl_max = std::max(compl_max, std::abs(result_.y[c] * slack));
     } else {
       compl_max = std::max(compl_max, std::abs(result_.z[c - m_] * slack));
@@ -860,13 +1227,26 @@ void DenseQp<Scalar, Vars, Rows>::finish(QpStatus status, const char* message) {
   }
 }
 
-// Factorises, from J0, the equalities and then the first `count` constraints listed in
+// Factorises from scratch the equalities and then the first `count` constraints listed in
 // previous_active_/previous_sign_ (skipping any that became dependent or unbounded).
+// In product form, starting from Q = I, this is a left-looking Householder QR of L⁻¹N: each
+// constraint's d = Qᵀ L⁻¹ n passes the reflections so far and its own reflection joins the
+// product (add_to_factorization()), so no n × n matrix is updated. The dependency test is the
+// same as for constraints added one by one (dependent()), in the same order.
 // Returns whether any listed constraint was taken.
 template <typename Scalar, int Vars, int Rows>
 bool DenseQp<Scalar, Vars, Rows>::rebuild_factorization(Index count) {
-  J_ = J0_;
-  R_.setZero();
+  // Few constraints to take (a cold start, a small problem): J explicitly, as the active-set
+  // changes that follow cost less with it than with the product form, which pays off when many
+  // are taken here. W_ = J and w0_ = 0 make add/drop_from_factorization() update J itself.
+  explicit_j_ = n_ < kProductMinVars || 4 * (num_equalities_ + count) < n_;
+  reflections_ = 0;  // Q = I
+  if (explicit_j_) {
+    form_j0();
+    w0_ = 0;
+  } else {
+    w0_ = n_;
+  }
   q_ = 0;
   row_state_.setZero();
   bound_state_.setZero();
@@ -911,10 +1291,11 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
   const int max_iter = settings_.max_iterations > 0
                            ? settings_.max_iterations
                            : static_cast<int>(std::max<Index>(100, 5 * (n_ + m_)));
-  // x0 = −H⁻¹g = −J0 J0ᵀ g
-  tmp_.noalias() = J0_.transpose().template triangularView<Eigen::Lower>() * g_;
-  x0_.noalias() = J0_.template triangularView<Eigen::Upper>() * tmp_;
-  x0_ = -x0_;
+  // x0 = −H⁻¹g = −L⁻ᵀ L⁻¹ g
+  tmp_ = p_.g;
+  solve_with_l<false>(tmp_);
+  solve_with_l<true>(tmp_);
+  x0_ = -tmp_;
   if (!detail::all_finite(x0_)) {
     // H is tiny against g: the unconstrained minimiser overflows and no step can be trusted.
     result_.x.setZero();
@@ -929,7 +1310,7 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
   if (warm && cache_valid_) {
     result_.warm_started = true;
     result_.reused_factorization = true;
-    // J_, R_, active_ are those of the previous solve; refresh the state flags.
+    // Q, R, active_ are those of the previous solve; refresh the state flags.
     row_state_.setZero();
     bound_state_.setZero();
     for (Index k = 0; k < q_; ++k) state_of(active_[k]) = active_sign_[k];
@@ -1021,7 +1402,9 @@ auto DenseQp<Scalar, Vars, Rows>::solve() -> const Result& {
       // Full step t2: makes p satisfied with equality along z = J₂d₂.
       Scalar t2 = kInf;
       if (!dep) {
-        step_.noalias() = J_.rightCols(n_ - q_) * d_.tail(n_ - q_);
+        step_.head(q_).setZero();
+        step_.tail(n_ - q_) = d_.tail(n_ - q_);
+        apply_j(step_, q_, n_ - q_);  // J₂ d₂
         const Scalar slack = bound_of(p, sign) - normal_dot(p, sign, result_.x);
         // nᵀz equals ‖d₂‖² in exact arithmetic; using the computed value makes the full step
         // land on the constraint even when the factors carry rounding.

@@ -42,6 +42,18 @@ enum class TorchActivation : std::int64_t {
   tanh = 1,  ///< thesis §11.2.2 (NMPC environment)
 };
 
+/// "relu" or "tanh", e.g. for logs; "unknown" for a value out of range (a policy file's
+/// `activation` attribute is read into this enum).
+constexpr const char* to_string(TorchActivation activation) noexcept {
+  switch (activation) {
+    case TorchActivation::relu:
+      return "relu";
+    case TorchActivation::tanh:
+      return "tanh";
+  }
+  return "unknown";
+}
+
 /// PPO hyper-parameters. Defaults: the common PPO choices; thesis values per environment are
 /// in the examples (examples/ppo_train.cpp) and docs/learning.md.
 struct PpoSettings {
@@ -67,8 +79,53 @@ struct PpoSettings {
   std::uint64_t seed = 0;            ///< torch::manual_seed (weights, sampling, shuffling)
 };
 
-/// One update's statistics (means over its minibatches).
+/// How an update ended.
+enum class PpoUpdateStatus : std::uint8_t {
+  updated,  ///< every epoch ran over every minibatch
+  /// the mean KL estimate of a minibatch exceeded PpoSettings::target_kl: that minibatch's
+  /// step and the rest of the update were skipped (PpoUpdateResult::steps were taken)
+  kl_stopped,
+};
+
+/// "updated" or "kl_stopped", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(PpoUpdateStatus status) noexcept {
+  switch (status) {
+    case PpoUpdateStatus::updated:
+      return "updated";
+    case PpoUpdateStatus::kl_stopped:
+      return "kl_stopped";
+  }
+  return "unknown";
+}
+
+/// Checks PPO's hyper-parameters (TorchPpo's constructor and load() call this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const PpoSettings& s) {
+  for (auto h : s.actor_hidden) check_argument(h >= 1, "PpoSettings.actor_hidden", ">= 1", h);
+  for (auto h : s.critic_hidden) check_argument(h >= 1, "PpoSettings.critic_hidden", ">= 1", h);
+  check_argument(s.activation == TorchActivation::relu || s.activation == TorchActivation::tanh,
+                 "PpoSettings.activation", "relu (0) or tanh (1)",
+                 static_cast<std::int64_t>(s.activation));
+  check_positive("PpoSettings.initial_std", s.initial_std);
+  check_positive("PpoSettings.learning_rate", s.learning_rate);
+  check_argument(s.gamma > 0.0 && s.gamma <= 1.0, "PpoSettings.gamma", "a value in (0, 1]",
+                 s.gamma);
+  check_argument(s.lambda >= 0.0 && s.lambda <= 1.0, "PpoSettings.lambda", "a value in [0, 1]",
+                 s.lambda);
+  check_positive("PpoSettings.clip", s.clip);
+  check_non_negative("PpoSettings.value_coef", s.value_coef);
+  check_argument(std::isfinite(s.entropy_coef), "PpoSettings.entropy_coef", "finite",
+                 s.entropy_coef);
+  check_argument(s.epochs >= 1, "PpoSettings.epochs", "at least 1", s.epochs);
+  check_argument(s.minibatch >= 1, "PpoSettings.minibatch", "at least 1", s.minibatch);
+  check_positive("PpoSettings.reward_scale", s.reward_scale);
+}
+
+/// One update's outcome and statistics (means over its minibatches).
 struct PpoUpdateResult {
+  PpoUpdateStatus status = PpoUpdateStatus::updated;
+  const char* message = "";    ///< why it stopped early; empty when updated
+  int steps = 0;               ///< gradient steps taken (minibatches over all epochs)
   double policy_loss = 0.0;    ///< −L^CLIP
   double value_loss = 0.0;     ///< (V_θ(s) − V^target)²
   double entropy = 0.0;        ///< S[π_θ] (eq. 11.2, summed over action dimensions)
@@ -284,6 +341,8 @@ class TorchPpo {
         const double kl = ((ratio - 1.0) - log_ratio).mean().item<double>();
         if (s_.target_kl > 0.0 && kl > s_.target_kl) {
           stop = true;  // this minibatch's step is not taken
+          out.status = PpoUpdateStatus::kl_stopped;
+          out.message = "the mean KL estimate exceeded target_kl: the update stopped early";
           break;
         }
         const torch::Tensor loss =
@@ -302,6 +361,7 @@ class TorchPpo {
         ++batches;
       }
     }
+    out.steps = batches;
     if (batches > 0) {
       out.policy_loss /= batches;
       out.value_loss /= batches;
@@ -432,21 +492,7 @@ class TorchPpo {
   static const PpoSettings& checked(const PpoSettings& s, int obs, int act) {
     check_argument(obs >= 1 && act >= 1, "TorchPpo", "observation and action sizes >= 1",
                    std::to_string(obs) + " and " + std::to_string(act));
-    for (auto h : s.actor_hidden) check_argument(h >= 1, "PpoSettings.actor_hidden", ">= 1", h);
-    for (auto h : s.critic_hidden) check_argument(h >= 1, "PpoSettings.critic_hidden", ">= 1", h);
-    check_positive("PpoSettings.initial_std", s.initial_std);
-    check_positive("PpoSettings.learning_rate", s.learning_rate);
-    check_argument(s.gamma > 0.0 && s.gamma <= 1.0, "PpoSettings.gamma", "a value in (0, 1]",
-                   s.gamma);
-    check_argument(s.lambda >= 0.0 && s.lambda <= 1.0, "PpoSettings.lambda", "a value in [0, 1]",
-                   s.lambda);
-    check_positive("PpoSettings.clip", s.clip);
-    check_non_negative("PpoSettings.value_coef", s.value_coef);
-    check_argument(std::isfinite(s.entropy_coef), "PpoSettings.entropy_coef", "finite",
-                   s.entropy_coef);
-    check_argument(s.epochs >= 1, "PpoSettings.epochs", "at least 1", s.epochs);
-    check_argument(s.minibatch >= 1, "PpoSettings.minibatch", "at least 1", s.minibatch);
-    check_positive("PpoSettings.reward_scale", s.reward_scale);
+    validate(s);
     return s;
   }
 

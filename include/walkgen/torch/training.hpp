@@ -5,15 +5,15 @@
 /// on a walkgen::StepPool that the program owns; one batched forward pass of the policy per step.
 ///
 /// An environment type provides observation_size(), action_size(), reset(), observe(float*)
-/// and EnvStep step(const float*) (walkgen/torch/environment.hpp, nmpc_environment.hpp).
+/// and EnvStep step(const float*) (walkgen/learning/environment.hpp, nmpc_environment.hpp).
 
 #include <chrono>
 #include <functional>
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
-#include "walkgen/torch/environment.hpp"
-#include "walkgen/torch/parallel.hpp"
+#include "walkgen/learning/environment.hpp"
+#include "walkgen/learning/step_pool.hpp"
 #include "walkgen/torch/ppo.hpp"
 
 namespace walkgen {
@@ -216,7 +216,8 @@ template <class Env>
 
 /// One evaluated task (episode) of evaluate_tasks().
 struct PpoTaskResult {
-  EpisodeEnd end = EpisodeEnd::none;
+  EpisodeEnd end = EpisodeEnd::none;  ///< the status: how the episode ended (EnvStep::end)
+  const char* message = "";           ///< EnvStep::message of the episode's last step
   int steps = 0;
   double reward = 0.0;
 };
@@ -265,6 +266,7 @@ template <class Env, class Task>
       ++res.steps;
       if (!steps[b].done()) continue;
       res.end = steps[b].end;
+      res.message = steps[b].message;
       if (on_end) on_end(static_cast<std::size_t>(task_of[e]), envs[e]);
       assign(e);
     }

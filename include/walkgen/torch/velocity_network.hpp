@@ -21,7 +21,7 @@
 #include <string>
 
 #include "walkgen/core/exceptions.hpp"
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
 
 namespace walkgen {
 
@@ -32,18 +32,24 @@ struct VelocityNetworkSettings {
   int block = 4;                  ///< downsampling: the mean of block × block pixels
 };
 
+/// Checks the network's pre-processing settings (VelocityNetwork's constructor calls this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const VelocityNetworkSettings& s) {
+  check_argument(s.max_command.allFinite(), "VelocityNetworkSettings.max_command",
+                 "finite limits (v_x [m/s], ω_z [rad/s])", "NaN or inf");
+  check_positive("VelocityNetworkSettings.disparity_scale", s.disparity_scale, "a scale > 0 px");
+  check_argument(s.block >= 1, "VelocityNetworkSettings.block", "a block of >= 1 px", s.block);
+}
+
 /// A TorchScript velocity network with its recurrent state. Not thread-safe.
 class VelocityNetwork {
  public:
-  /// @throws walkgen::invalid_argument when the file cannot be loaded or lacks `step` or
-  ///   `hidden` (naming the file).
+  /// @throws walkgen::invalid_argument for invalid settings (validate()), or when the file
+  ///   cannot be loaded or lacks `step` or `hidden` (naming the file).
   explicit VelocityNetwork(const std::string& path,
                            VelocityNetworkSettings settings = VelocityNetworkSettings())
       : settings_(std::move(settings)) {
-    check_argument(settings_.block >= 1 && settings_.disparity_scale > 0.0 &&
-                       settings_.max_command.allFinite(),
-                   "VelocityNetworkSettings", "block >= 1, disparity_scale > 0, finite limits",
-                   "out of range");
+    validate(settings_);
     try {
       module_ = torch::jit::load(path);
     } catch (const std::exception& e) {

@@ -2,7 +2,7 @@
 // against tinyxml2, load a robot and compute its forward kinematics.
 #include <cstdio>
 
-#include <walkgen/robot_io/urdf.hpp>
+#include <walkgen/urdf/urdf_loader.hpp>
 
 int main() {
   const char* urdf =

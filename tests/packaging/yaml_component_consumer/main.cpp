@@ -2,8 +2,8 @@
 // against yaml-cpp and read settings.
 #include <cstdio>
 
-#include <walkgen/robot_io/yaml_settings.hpp>
 #include <walkgen/version.hpp>
+#include <walkgen/yaml/settings_loader.hpp>
 
 int main() {
   const auto s = walkgen::walking_settings_from_yaml("optimization: {n: 20}\nt_step: 1.6\n");

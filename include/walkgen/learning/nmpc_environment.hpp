@@ -18,9 +18,9 @@
 #include "walkgen/core/assert.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/learning/environment.hpp"
 #include "walkgen/mpc/settings.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
-#include "walkgen/torch/environment.hpp"
 
 namespace walkgen {
 
@@ -56,6 +56,28 @@ struct NmpcGoalSettings {
   double obstacle_lateral = 0.2;
   double obstacle_clearance = 0.15;  ///< [m] start and goal stay this far beyond R + m
 };
+
+/// Checks the NMPC goal environment's settings, the walking settings included (NmpcGoalEnv's
+/// constructor calls this, and checks walking.n against its horizon).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const NmpcGoalSettings& s) {
+  validate(s.walking);
+  check_argument(s.ticks_per_step >= 1, "NmpcGoalSettings.ticks_per_step", "at least 1",
+                 s.ticks_per_step);
+  check_argument(s.max_steps >= 1, "NmpcGoalSettings.max_steps", "at least 1", s.max_steps);
+  check_positive("NmpcGoalSettings.goal_min_distance", s.goal_min_distance);
+  check_argument(s.goal_max_distance >= s.goal_min_distance, "NmpcGoalSettings.goal_max_distance",
+                 "at least goal_min_distance", s.goal_max_distance);
+  check_positive("NmpcGoalSettings.success_radius", s.success_radius);
+  check_argument(s.command_fraction > 0.0 && s.command_fraction < 1.0,
+                 "NmpcGoalSettings.command_fraction", "a fraction in (0, 1)", s.command_fraction);
+  check_argument(s.obstacles >= 0, "NmpcGoalSettings.obstacles", "a count >= 0", s.obstacles);
+  check_positive("NmpcGoalSettings.obstacle_min_radius", s.obstacle_min_radius);
+  check_argument(s.obstacle_max_radius >= s.obstacle_min_radius,
+                 "NmpcGoalSettings.obstacle_max_radius", "at least obstacle_min_radius",
+                 s.obstacle_max_radius);
+  check_non_negative("NmpcGoalSettings.obstacle_margin", s.obstacle_margin);
+}
 
 /// One goal (and its obstacles) of an episode, world frame; the robot starts at the
 /// preset's initial state, facing +x.
@@ -170,8 +192,10 @@ class NmpcGoalEnv {
     [[maybe_unused]] const CommandStatus sent = mpc_.set_command(command_of(action));
     WALKGEN_ASSERT(sent == CommandStatus::accepted);  // finite, |c| < max_command by command_of
     for (int k = 0; k < s_.ticks_per_step; ++k) {
-      if (mpc_.solve().status != MpcStatus::solved) {
+      const MpcResult<double>& solved = mpc_.solve();
+      if (solved.status != MpcStatus::solved) {
         failed_ = true;
+        r.message = solved.message;  // the NMPC's static string
         break;
       }
       mpc_.advance();
@@ -189,11 +213,13 @@ class NmpcGoalEnv {
     if (failed_) {
       r.reward += s_.failure_reward;
       r.end = EpisodeEnd::failure;
+      if (*r.message == '\0') r.message = "the NMPC failed earlier in this episode";
     } else if (d < s_.success_radius) {
       r.reward += s_.success_reward;
       r.end = EpisodeEnd::success;
     } else if (steps_ >= s_.max_steps) {
       r.end = EpisodeEnd::truncated;
+      r.message = "the step budget max_steps is spent";
     }
     return r;
   }
@@ -214,24 +240,9 @@ class NmpcGoalEnv {
 
  private:
   static const NmpcGoalSettings& checked(const NmpcGoalSettings& s) {
-    validate(s.walking);
+    validate(s);
     check_argument(s.walking.n == N || N == Eigen::Dynamic, "NmpcGoalSettings.walking.n",
                    "the environment's horizon N = " + std::to_string(N), s.walking.n);
-    check_argument(s.ticks_per_step >= 1, "NmpcGoalSettings.ticks_per_step", "at least 1",
-                   s.ticks_per_step);
-    check_argument(s.max_steps >= 1, "NmpcGoalSettings.max_steps", "at least 1", s.max_steps);
-    check_positive("NmpcGoalSettings.goal_min_distance", s.goal_min_distance);
-    check_argument(s.goal_max_distance >= s.goal_min_distance, "NmpcGoalSettings.goal_max_distance",
-                   "at least goal_min_distance", s.goal_max_distance);
-    check_positive("NmpcGoalSettings.success_radius", s.success_radius);
-    check_argument(s.command_fraction > 0.0 && s.command_fraction < 1.0,
-                   "NmpcGoalSettings.command_fraction", "a fraction in (0, 1)", s.command_fraction);
-    check_argument(s.obstacles >= 0, "NmpcGoalSettings.obstacles", "a count >= 0", s.obstacles);
-    check_positive("NmpcGoalSettings.obstacle_min_radius", s.obstacle_min_radius);
-    check_argument(s.obstacle_max_radius >= s.obstacle_min_radius,
-                   "NmpcGoalSettings.obstacle_max_radius", "at least obstacle_min_radius",
-                   s.obstacle_max_radius);
-    check_non_negative("NmpcGoalSettings.obstacle_margin", s.obstacle_margin);
     return s;
   }
 

@@ -1,9 +1,11 @@
 #pragma once
 /// @file
 /// A fixed pool of threads that runs one function over an index range and waits: the vectorised
-/// environment step of walkgen::torch (several NMPC environments stepped at once). The pool is
+/// environment step of the trainers (several NMPC environments stepped at once). The pool is
 /// the application's object (docs/design.md convention 13): it is created, sized and owned by the
-/// program, which hands it to the trainer; environments never start threads.
+/// program, which hands it to the trainer; environments never start threads. Standard library
+/// only: a program that uses it links Threads::Threads (CMake's FindThreads), as for any
+/// std::thread.
 
 #include <condition_variable>
 #include <exception>

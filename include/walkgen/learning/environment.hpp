@@ -1,11 +1,12 @@
 #pragma once
 /// @file
-/// What every reinforcement-learning environment of walkgen::torch returns from a step, and the
+/// What every reinforcement-learning environment of walkgen returns from a step, and the
 /// benchmarking environment of thesis §11.2.1 (figure 11.16): a point agent moves towards a goal.
 ///
 /// Environments are plain blocks (docs/design.md convention 13): reset(), observe(), step(); they
-/// depend on Eigen only, never reset themselves and never print. The trainer
-/// (walkgen/torch/ppo.hpp) owns the loop and resets an environment whose episode ended.
+/// depend on Eigen only (core, walkgen::walkgen), never reset themselves and never print. The
+/// trainer of the libtorch backend (walkgen/torch/training.hpp, target walkgen::torch) owns the
+/// loop and resets an environment whose episode ended.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -40,10 +41,14 @@ constexpr const char* to_string(EpisodeEnd e) noexcept {
   return "unknown";
 }
 
-/// Outcome of one environment step.
+/// Outcome of one environment step. Its status is `end` (the name predates the library-wide
+/// `status`; environments written by users set it).
 struct EnvStep {
   double reward = 0.0;
   EpisodeEnd end = EpisodeEnd::none;
+  /// Why the episode ended in failure or was truncated; empty while it goes on and on success.
+  /// A static string (the trainer steps environments in its loop).
+  const char* message = "";
   bool done() const { return end != EpisodeEnd::none; }
 };
 
@@ -67,6 +72,22 @@ struct PointGoalSettings {
   double lose_reward = -10.0;  ///< added on leaving lose_radius
 };
 
+/// Checks the benchmarking environment's settings (PointGoalEnv's constructor calls this).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const PointGoalSettings& s) {
+  check_positive("PointGoalSettings.step_size", s.step_size);
+  check_positive("PointGoalSettings.win_radius", s.win_radius);
+  check_positive("PointGoalSettings.goal_range", s.goal_range);
+  check_argument(std::isfinite(s.lose_radius) && s.lose_radius > s.win_radius,
+                 "PointGoalSettings.lose_radius", "a radius larger than win_radius", s.lose_radius);
+  check_argument(s.max_steps >= 0, "PointGoalSettings.max_steps", "a step budget >= 0 (0: none)",
+                 s.max_steps);
+  check_argument(std::isfinite(s.win_reward), "PointGoalSettings.win_reward", "a finite reward",
+                 s.win_reward);
+  check_argument(std::isfinite(s.lose_reward), "PointGoalSettings.lose_reward", "a finite reward",
+                 s.lose_reward);
+}
+
 /// The benchmarking environment of thesis §11.2.1: the agent starts at the origin, a goal is
 /// drawn at random; the state is (a_x, a_y, g_x, g_y), the action (Δx, Δy) ∈ [−1, 1]²
 /// (clipped) times step_size; the reward is the progress ‖a_{t−1} − g‖ − ‖a_t − g‖, plus
@@ -77,15 +98,10 @@ class PointGoalEnv {
   static constexpr int kObservationSize = 4;
   static constexpr int kActionSize = 2;
 
-  /// @throws walkgen::invalid_argument on non-positive sizes or win_radius ≥ lose_radius.
+  /// @throws walkgen::invalid_argument for invalid settings (validate()).
   explicit PointGoalEnv(const PointGoalSettings& settings = {}, std::uint64_t seed = 0)
       : s_(settings), rng_(seed) {
-    check_positive("PointGoalSettings.step_size", s_.step_size);
-    check_positive("PointGoalSettings.win_radius", s_.win_radius);
-    check_positive("PointGoalSettings.goal_range", s_.goal_range);
-    check_argument(std::isfinite(s_.lose_radius) && s_.lose_radius > s_.win_radius,
-                   "PointGoalSettings.lose_radius", "a radius larger than win_radius",
-                   s_.lose_radius);
+    validate(s_);
     reset();
   }
 
@@ -137,8 +153,10 @@ class PointGoalEnv {
     } else if (after > s_.lose_radius) {
       r.reward += s_.lose_reward;
       r.end = EpisodeEnd::failure;
+      r.message = "the agent left lose_radius";
     } else if (s_.max_steps > 0 && ++steps_ >= s_.max_steps) {
       r.end = EpisodeEnd::truncated;
+      r.message = "the step budget max_steps is spent";
     }
     return r;
   }

@@ -1,5 +1,5 @@
 // The measured zero moment point from two ankle force-torque sensors (thesis eq. 2.11-2.17).
-#include "walkgen/robot_io/robot.hpp"
+#include "walkgen/robot/robot.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // fixed joints, default axis, ignored elements), and every kind of malformed document throws
 // walkgen::invalid_argument naming the line and the element, never crashes.
 
-#include "walkgen/robot_io/urdf.hpp"
+#include "walkgen/urdf/urdf_loader.hpp"
 
 #include <gtest/gtest.h>
 

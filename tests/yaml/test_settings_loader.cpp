@@ -2,7 +2,7 @@
 // listing (Table 6.1) loads unchanged, sections are accepted, and every kind of bad input throws
 // walkgen::invalid_argument naming the key.
 
-#include "walkgen/robot_io/yaml_settings.hpp"
+#include "walkgen/yaml/settings_loader.hpp"
 
 #include <gtest/gtest.h>
 
