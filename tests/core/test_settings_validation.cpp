@@ -94,7 +94,11 @@ TEST(SettingsValidation, NmpcGoalSettings) {
        {[](S& s) { s.obstacle_max_radius = 0.05; },
         {"NmpcGoalSettings.obstacle_max_radius", "obstacle_min_radius", "0.05"}},
        {[](S& s) { s.obstacle_margin = -0.1; },
-        {"NmpcGoalSettings.obstacle_margin", ">= 0", "-0.1"}}});
+        {"NmpcGoalSettings.obstacle_margin", ">= 0", "-0.1"}},
+       {[](S& s) { s.obstacle_lateral = -0.2; }, {"NmpcGoalSettings.obstacle_lateral", "-0.2"}},
+       {[](S& s) { s.obstacle_clearance = kInf; }, {"NmpcGoalSettings.obstacle_clearance"}},
+       {[](S& s) { s.goal_weight = kNan; }, {"NmpcGoalSettings.goal_weight", "finite"}},
+       {[](S& s) { s.failure_reward = -kInf; }, {"NmpcGoalSettings.failure_reward", "finite"}}});
 }
 
 TEST(SettingsValidation, IkResidualSettings) {

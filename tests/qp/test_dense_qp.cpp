@@ -357,6 +357,26 @@ TEST(DenseQp, ProblemWrittenInPlaceMatchesCopyingInit) {
     ASSERT_EQ(copying.update(g2, p.lb, p.ub), QpStatus::unsolved) << k;
     EXPECT_EQ(in_place.solve().x, copying.solve().x) << k;
   }
+  // The documented snippet: H, g and A written, bounds left as constructed (absent) = the
+  // unconstrained minimum −H⁻¹g.
+  DenseQp<double> fresh(3, 2);
+  fresh.problem().H = Eigen::Vector3d(1.0, 2.0, 4.0).asDiagonal();
+  fresh.problem().g = Eigen::Vector3d(-1.0, -1.0, -1.0);
+  fresh.problem().A.setOnes();
+  ASSERT_EQ(fresh.init(), QpStatus::unsolved);
+  ASSERT_EQ(fresh.solve().status, QpStatus::solved);
+  EXPECT_LT((fresh.result().x - Eigen::Vector3d(1.0, 0.5, 0.25)).norm(), 1e-15);
+  // A failed init() leaves nothing for update() to reuse.
+  fresh.problem().A(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(fresh.init(), QpStatus::invalid_input);
+  fresh.problem().A(0, 1) = 1.0;
+  EXPECT_EQ(fresh.update(), QpStatus::invalid_input);
+  EXPECT_EQ(fresh.solve().status, QpStatus::invalid_input);
+  ASSERT_EQ(fresh.init(), QpStatus::unsolved);
+  // Settings made invalid after init() are reported by update() too.
+  fresh.settings().dependency_tolerance = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(fresh.update(), QpStatus::invalid_input);
+  EXPECT_NE(std::string(fresh.result().message).find("dependency_tolerance"), std::string::npos);
   DenseQp<double> qp(3, 2);
   qp.problem().H.resize(4, 4);
   EXPECT_THROW(qp.init(), walkgen::invalid_argument);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "walkgen/core/assert.hpp"
@@ -77,6 +78,17 @@ inline void validate(const NmpcGoalSettings& s) {
                  "NmpcGoalSettings.obstacle_max_radius", "at least obstacle_min_radius",
                  s.obstacle_max_radius);
   check_non_negative("NmpcGoalSettings.obstacle_margin", s.obstacle_margin);
+  check_non_negative("NmpcGoalSettings.obstacle_lateral", s.obstacle_lateral);
+  check_non_negative("NmpcGoalSettings.obstacle_clearance", s.obstacle_clearance);
+  const std::pair<const char*, double> finite[] = {
+      {"NmpcGoalSettings.frontal_weight", s.frontal_weight},
+      {"NmpcGoalSettings.goal_weight", s.goal_weight},
+      {"NmpcGoalSettings.time_weight", s.time_weight},
+      {"NmpcGoalSettings.success_reward", s.success_reward},
+      {"NmpcGoalSettings.failure_reward", s.failure_reward}};
+  for (const auto& [name, value] : finite) {
+    check_argument(std::isfinite(value), name, "a finite value", value);
+  }
 }
 
 /// One goal (and its obstacles) of an episode, world frame; the robot starts at the

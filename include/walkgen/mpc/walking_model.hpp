@@ -65,10 +65,7 @@ struct WalkingWorkspace {
         scratch(VectorX::Zero(L.dims().N)),
         c(VectorX::Zero(L.num_rows())),
         c_lower(VectorX::Zero(L.num_rows())),
-        c_upper(VectorX::Zero(L.num_rows())) {
-    qp.problem().l.setConstant(-kInf);
-    qp.problem().u.setConstant(kInf);
-  }
+        c_upper(VectorX::Zero(L.num_rows())) {}
 };
 
 /// The formulation. Template parameters as WalkingMpc's.

@@ -202,7 +202,8 @@ constexpr int qp_constraint_layout(int vars, int rows) {
 
 /// A QP's data, minimise ½xᵀHx + gᵀx subject to lb ≤ Ax ≤ ub and l ≤ x ≤ u (file comment).
 /// DenseQp owns one (DenseQp::problem()): a caller that assembles its QP every tick writes into
-/// it in place and calls init() / update() without arguments, so the data exist once.
+/// it in place and calls init() / update() without arguments, so the data exist once. DenseQp's
+/// constructor sizes them with H, g and A zero and every bound absent (±∞).
 template <typename Scalar = double, int Vars = Eigen::Dynamic, int Rows = Eigen::Dynamic>
 struct QpData {
   Eigen::Matrix<Scalar, Vars, Vars> H;  ///< n × n, symmetric positive definite
@@ -266,10 +267,11 @@ class DenseQp {
     R_.setZero(n_, n_);
     p_.A.setZero(m_, n_);
     p_.g.setZero(n_);
-    p_.lb.setZero(m_);
-    p_.ub.setZero(m_);
-    p_.l.setZero(n_);
-    p_.u.setZero(n_);
+    // Absent sides until written (problem() in place): no row or variable is bounded.
+    p_.lb.setConstant(m_, -kInf);
+    p_.ub.setConstant(m_, kInf);
+    p_.l.setConstant(n_, -kInf);
+    p_.u.setConstant(n_, kInf);
     row_norm_.setOnes(m_);
     Ax_.setZero(m_);
     x0_.setZero(n_);
@@ -321,8 +323,6 @@ class DenseQp {
   QpStatus init(const Eigen::MatrixBase<DH>& H, const Eigen::MatrixBase<Dg>& g,
                 const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<Dlb>& lb,
                 const Eigen::MatrixBase<Dub>& ub) {
-    p_.l.setConstant(-kInf);
-    p_.u.setConstant(kInf);
     return init_impl(H, g, A, lb, ub, static_cast<const VectorN*>(nullptr),
                      static_cast<const VectorN*>(nullptr));
   }
@@ -618,6 +618,10 @@ QpStatus DenseQp<Scalar, Vars, Rows>::init_impl(
                  std::to_string(A.rows()) + " x " + std::to_string(A.cols()),
                  "m and n are fixed at construction");
   check_vector_sizes("DenseQp::init", g, lb, ub, l, u);
+  if (l == nullptr) {  // the 5-argument init(): no variable bounds
+    p_.l.setConstant(-kInf);
+    p_.u.setConstant(kInf);
+  }
   p_.H = H;
   p_.A = A;
   store_vectors(g, lb, ub, l, u);
@@ -626,10 +630,15 @@ QpStatus DenseQp<Scalar, Vars, Rows>::init_impl(
 
 template <typename Scalar, int Vars, int Rows>
 void DenseQp<Scalar, Vars, Rows>::check_problem_sizes(const char* where) const {
-  check_argument(p_.H.rows() == n_ && p_.H.cols() == n_, where, "problem().H n x n",
-                 std::to_string(p_.H.rows()) + " x " + std::to_string(p_.H.cols()));
-  check_argument(p_.A.rows() == m_ && p_.A.cols() == n_, where, "problem().A m x n",
-                 std::to_string(p_.A.rows()) + " x " + std::to_string(p_.A.cols()));
+  // The messages are only built when a size is wrong (this runs every init() and update()).
+  if (p_.H.rows() != n_ || p_.H.cols() != n_) {
+    check_argument(false, where, "problem().H n x n",
+                   std::to_string(p_.H.rows()) + " x " + std::to_string(p_.H.cols()));
+  }
+  if (p_.A.rows() != m_ || p_.A.cols() != n_) {
+    check_argument(false, where, "problem().A m x n",
+                   std::to_string(p_.A.rows()) + " x " + std::to_string(p_.A.cols()));
+  }
   check_vector_sizes(where, p_.g, p_.lb, p_.ub, &p_.l, &p_.u);
 }
 
@@ -637,6 +646,9 @@ template <typename Scalar, int Vars, int Rows>
 QpStatus DenseQp<Scalar, Vars, Rows>::init() {
   check_problem_sizes("DenseQp::init");
   cache_valid_ = false;
+  // Until this init() succeeds, no factorisation matches problem(): update() must not reuse one.
+  factorized_ = false;
+  data_ok_ = false;
   result_.status = QpStatus::unsolved;
   result_.message = "";
   if (!detail::all_finite(p_.H)) return invalid("H has a NaN or Inf entry");
@@ -684,6 +696,7 @@ QpStatus DenseQp<Scalar, Vars, Rows>::update() {
   result_.status = QpStatus::unsolved;
   result_.message = "";
   if (!factorized_) return invalid("update() needs a successful init() first");
+  if (const char* why = detail::qp_settings_problem(settings_)) return invalid(why);
   if (const char* why = validate_vectors()) return invalid(why);
   bool changed = false;
   refresh_equalities(&changed);
