@@ -83,9 +83,15 @@ endfunction()
 
 # Benchmarks measure walkgen as a performance-minded user compiles it. walkgen is header-only,
 # so the consumer's flags decide its speed; with this ON our benchmarks are built for the CPU
-# they run on (-march=native: AVX2/FMA where present). The `bench` preset turns it on; the
-# `release` preset keeps the portable x86-64 baseline, and docs quote both.
-option(WALKGEN_BENCHMARK_NATIVE "Compile walkgen's benchmarks with -march=native" OFF)
+# they run on (WALKGEN_BENCHMARK_NATIVE_FLAGS). The `bench` preset turns it on; the `release`
+# preset keeps the portable x86-64 baseline, and docs quote both.
+option(WALKGEN_BENCHMARK_NATIVE "Compile walkgen's benchmarks for this CPU" OFF)
+# -march=native (AVX2/FMA where present) without AVX-512: Eigen's 512-bit packets are slower
+# on walking QPs (vectors of a few dozen entries) than its 256-bit ones — on the Xeon of
+# docs/walking.md's tables, BM_TickStraight<16> takes 28.1 µs with them and 25.2 µs without
+# (<64>: 425 and 444 µs). A cache variable, so a user can measure their own choice.
+set(WALKGEN_BENCHMARK_NATIVE_FLAGS "-march=native;-mno-avx512f" CACHE STRING
+  "Compile options of the benchmarks when WALKGEN_BENCHMARK_NATIVE is ON (a CMake list)")
 
 # A Google Benchmark executable (run it by hand for numbers) plus one quick ctest
 # "<name>_smoke" (label "benchmark") that runs every benchmark once, briefly.
@@ -103,7 +109,7 @@ function(walkgen_add_benchmark)
   target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   walkgen_target_warnings(${_arg_NAME})
   if(WALKGEN_BENCHMARK_NATIVE AND NOT MSVC)
-    target_compile_options(${_arg_NAME} PRIVATE -march=native)
+    target_compile_options(${_arg_NAME} PRIVATE ${WALKGEN_BENCHMARK_NATIVE_FLAGS})
   endif()
 
   # Google Benchmark < 1.8 parses --benchmark_min_time as plain seconds; 1.8 wants a unit suffix.

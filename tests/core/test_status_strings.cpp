@@ -18,17 +18,20 @@
 #include "walkgen/qp/dense_qp.hpp"
 #include "walkgen/robot/robot.hpp"
 #include "walkgen/scenarios/manufactured_qp.hpp"
+#include "walkgen/scenarios/walking_scenarios.hpp"
 
 namespace {
 
 using walkgen::CommandStatus;
 using walkgen::Foot;
+using walkgen::FootstepGroup;
 using walkgen::IkStatus;
 using walkgen::JointCommandStatus;
 using walkgen::JointType;
 using walkgen::LoopStatus;
 using walkgen::MpcStatus;
 using walkgen::PassSide;
+using walkgen::PatternWalkStatus;
 using walkgen::QpKind;
 using walkgen::QpStatus;
 using walkgen::RenderStatus;
@@ -104,6 +107,17 @@ struct Enumerators<PassSide> {
                                                   PassSide::left, PassSide::right};
 };
 
+template <>
+struct Enumerators<FootstepGroup> {
+  static constexpr std::array<FootstepGroup, 2> all = {FootstepGroup::positions,
+                                                       FootstepGroup::yaws};
+};
+template <>
+struct Enumerators<PatternWalkStatus> {
+  static constexpr std::array<PatternWalkStatus, 3> all = {
+      PatternWalkStatus::ok, PatternWalkStatus::command_rejected, PatternWalkStatus::mpc_failed};
+};
+
 // constexpr: usable where a constant expression is needed.
 static_assert(to_string(QpStatus::solved)[0] == 's');
 static_assert(to_string(MpcStatus::qp_failed)[0] == 'q');
@@ -118,6 +132,8 @@ static_assert(to_string(ShiftRule::per_step)[0] == 'p');
 static_assert(to_string(JointType::fixed)[0] == 'f');
 static_assert(to_string(PassSide::shorter)[0] == 's');
 static_assert(to_string(QpKind::many_bounds)[0] == 'm');
+static_assert(to_string(FootstepGroup::yaws)[0] == 'y');
+static_assert(to_string(PatternWalkStatus::mpc_failed)[0] == 'm');
 
 template <typename Enum>
 class StatusStrings : public ::testing::Test {};
@@ -139,13 +155,15 @@ struct EnumName {
     if (std::is_same<Enum, JointType>::value) return "JointType";
     if (std::is_same<Enum, PassSide>::value) return "PassSide";
     if (std::is_same<Enum, QpKind>::value) return "QpKind";
+    if (std::is_same<Enum, FootstepGroup>::value) return "FootstepGroup";
+    if (std::is_same<Enum, PatternWalkStatus>::value) return "PatternWalkStatus";
     return "unnamed";
   }
 };
 
 using Enums = ::testing::Types<QpStatus, MpcStatus, CommandStatus, IkStatus, LoopStatus,
                                RobotStatus, JointCommandStatus, RenderStatus, Foot, ShiftRule,
-                               JointType, PassSide, QpKind>;
+                               JointType, PassSide, QpKind, FootstepGroup, PatternWalkStatus>;
 TYPED_TEST_SUITE(StatusStrings, Enums, EnumName);
 
 TYPED_TEST(StatusStrings, EveryEnumeratorHasItsOwnNameAndOutOfRangeIsUnknown) {
@@ -168,6 +186,8 @@ TEST(StatusStrings, NamesAreTheEnumerators) {
   EXPECT_STREQ(to_string(JointType::revolute), "revolute");
   EXPECT_STREQ(to_string(PassSide::toward_heading), "toward_heading");
   EXPECT_STREQ(to_string(QpKind::many_bounds), "many_bounds");
+  EXPECT_STREQ(to_string(FootstepGroup::positions), "positions");
+  EXPECT_STREQ(to_string(PatternWalkStatus::command_rejected), "command_rejected");
 }
 
 }  // namespace

@@ -426,6 +426,25 @@ TEST(WalkingMpc, RejectsNonFiniteAndOutOfRangeCommandsKeepingThePreviousOne) {
   EXPECT_TRUE(mpc.plan().U.allFinite());
 }
 
+// heicub_walk() stops at the first tick whose command is rejected: the walk is what was
+// planned up to that tick, its status says why it ended.
+TEST(WalkingMpc, APatternWalkStopsAtTheFirstRejectedCommand) {
+  const walkgen::PatternWalk walk =
+      walkgen::heicub_walk([](int k) { return Eigen::Vector3d(k < 3 ? 0.03 : 5.0, 0.0, 0.0); }, 8);
+  EXPECT_FALSE(walk.ok());
+  EXPECT_EQ(walk.status, walkgen::PatternWalkStatus::command_rejected);
+  EXPECT_EQ(walk.command, walkgen::CommandStatus::out_of_range);
+  EXPECT_EQ(walk.ticks, 3);
+  EXPECT_NE(walk.message.find("tick 3"), std::string::npos) << walk.message;
+  ASSERT_FALSE(walk.samples.empty());
+  const walkgen::PatternWalk whole = walkgen::heicub_walk(Eigen::Vector3d(0.03, 0.0, 0.0), 3);
+  ASSERT_TRUE(whole.ok()) << whole.message;
+  EXPECT_EQ(whole.status, walkgen::PatternWalkStatus::ok);
+  EXPECT_TRUE(whole.message.empty());
+  ASSERT_EQ(whole.samples.size(), walk.samples.size());
+  EXPECT_EQ(whole.samples.back().com_x, walk.samples.back().com_x);
+}
+
 // Issue 21, defect 3 (reproducer mpc_far_state.cpp): a finite but absurd state (com_y = −1e30,
 // a feedback glitch) was accepted and the tick said solved with a violation of 1.2e38.
 TEST(WalkingMpc, ImplausibleStatesAreRejectedNamingTheLimit) {

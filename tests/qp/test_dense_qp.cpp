@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -265,6 +266,59 @@ TEST(DenseQp, BlockDiagonalHessianMatchesDenseFactorisation) {
   dense.init(Hw, Q.transpose() * g, A * Q, lb, ub);
   ASSERT_EQ(dense.solve().status, QpStatus::solved);
   EXPECT_LE((block.result().x - Q * dense.result().x).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+// init() keeps the rows of L whose leading principal block of H is unchanged (as in the walking
+// MPC, whose jerk blocks stay and whose footstep rows change): every kind of change below must
+// give what a fresh solver gives.
+TEST(DenseQp, CholeskyRowsAreReusedOnlyWhereHIsUnchanged) {
+  QpFactory f(9);
+  const int n = 20, m = 12;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+  H.block(0, 0, 12, 12) = f.spd(12, 50, 1);
+  H.block(12, 12, 8, 8) = f.spd(8, 10, 2);
+  const Eigen::MatrixXd A = f.random_matrix(m, n);
+  const Eigen::VectorXd g = f.random_matrix(n, 1);
+  const Eigen::VectorXd lb = Eigen::VectorXd::Constant(m, -0.3);
+  const Eigen::VectorXd ub = Eigen::VectorXd::Constant(m, 0.3);
+  DenseQp<double> reusing(n, m);
+  auto expect_fresh = [&](const Eigen::MatrixXd& Hk, double eps, const char* what) {
+    reusing.settings().regularization = eps;
+    ASSERT_EQ(reusing.init(Hk, g, A, lb, ub), QpStatus::unsolved) << what;
+    DenseQp<double> fresh(n, m);
+    fresh.settings().regularization = eps;
+    ASSERT_EQ(fresh.init(Hk, g, A, lb, ub), QpStatus::unsolved) << what;
+    ASSERT_EQ(reusing.solve().status, QpStatus::solved) << what;
+    ASSERT_EQ(fresh.solve().status, QpStatus::solved) << what;
+    EXPECT_LE((reusing.result().x - fresh.result().x).lpNorm<Eigen::Infinity>(), 1e-12) << what;
+    EXPECT_LT(reusing.result().dual_residual, 1e-9) << what;
+  };
+  expect_fresh(H, 0.0, "first factorisation");
+  // Adds δ to H_ij = H_ji and |δ| to H_ii, H_jj: H stays positive definite.
+  auto perturb = [](Eigen::MatrixXd& M, int i, int j, double delta) {
+    M(i, j) += delta;
+    M(j, i) += delta;
+    M(i, i) += std::abs(delta);
+    M(j, j) += std::abs(delta);
+  };
+  Eigen::MatrixXd Hk = H;
+  perturb(Hk, 10, 3, 0.7);  // the first block's trailing rows (10, 11) only
+  perturb(Hk, 11, 10, -0.2);
+  expect_fresh(Hk, 0.0, "trailing rows of a block changed");
+  perturb(Hk, 1, 0, -0.4);  // a leading row: nothing of that block can be kept
+  expect_fresh(Hk, 0.0, "leading row changed");
+  perturb(Hk, 19, 15, 0.3);  // the second block only
+  expect_fresh(Hk, 0.0, "second block changed");
+  expect_fresh(Hk, 1e-3, "regularisation changed");
+  Eigen::MatrixXd coupled = Hk;  // the blocks merge: the block structure changed
+  perturb(coupled, 14, 2, 0.5);
+  expect_fresh(coupled, 1e-3, "blocks merged");
+  expect_fresh(Hk, 1e-3, "blocks split again");
+  Eigen::MatrixXd indefinite = Hk;  // fails half-way through the first block
+  indefinite(11, 11) = -5.0;
+  reusing.settings().regularization = 1e-3;
+  EXPECT_EQ(reusing.init(indefinite, g, A, lb, ub), QpStatus::invalid_input);
+  expect_fresh(Hk, 1e-3, "after a failed factorisation");
 }
 
 TEST(DenseQp, FixedSizesMatchDynamicSizes) {

@@ -257,6 +257,7 @@ class DenseQp {
     w0_ = n_;
     p_.H.setZero(n_, n_);
     L_.setZero(n_, n_);
+    H_factored_.setZero(n_, n_);
     inv_diag_.setZero(n_);
     rhs_.setZero(n_);
     V_.setZero(n_, n_);
@@ -555,6 +556,10 @@ class DenseQp {
   VectorN rhs_;       // s = b − Nᵀx₀ of the active set (solve_active_set())
   // H's diagonal blocks: [b, block_end_[b]) for each block's first variable b.
   Eigen::Matrix<int, Vars, 1> block_end_;
+  // The lower triangles of H's blocks as last factorised (factorize() reuses L's leading rows
+  // where H's leading principal block is unchanged); valid while cholesky_cached_.
+  MatrixN H_factored_;
+  bool cholesky_cached_ = false;
   Index reflections_ = 0;    // r
   Index w0_ = 0;             // W = diag(I_w0, W̃)
   bool explicit_j_ = false;  // J is kept explicitly (in W_) instead of Q in product form
@@ -733,7 +738,14 @@ const char* DenseQp<Scalar, Vars, Rows>::factorize() {
   factorized_ = false;
   if (const char* why = detail::qp_settings_problem(settings_)) return why;
   // H + εI is factorised; p_.H stays H (the caller may assemble into it in place).
-  const Scalar epsilon = regularization_ = settings_.regularization;
+  const Scalar epsilon = settings_.regularization;
+  // Rows of L depend only on H's leading principal block up to them: where a block's leading
+  // rows of H (lower triangle) are those factorised last time, with the same ε and the same
+  // blocks so far, its leading rows of L are kept. (The walking MPC's jerk blocks never change;
+  // only its footstep rows, which come last in each block, do.)
+  bool reuse = cholesky_cached_ && epsilon == regularization_;
+  cholesky_cached_ = false;
+  regularization_ = epsilon;
   // H is factorised block by block where it is block diagonal (contiguous blocks with exactly
   // zero coupling), as walking QPs are (x, y and yaw decouple): O(Σ b³) instead of O(n³), and
   // the solves with L cost O(Σ b²). Left-looking Cholesky H_b = L_b L_bᵀ into L_.
@@ -747,23 +759,55 @@ const char* DenseQp<Scalar, Vars, Rows>::factorize() {
     while (last > reach && p_.H(last, i) == Scalar(0)) --last;
     reach = std::max(reach, last);
     if (reach > i) continue;
-    // Block [start, i].
-    block_end_[start] = static_cast<int>(i + 1);
-    for (Index j = start; j <= i; ++j) {
-      const Index k = j - start;
-      auto col = tmp_.segment(j, i + 1 - j);
-      col.noalias() = p_.H.col(j).segment(j, i + 1 - j) -
-                      L.block(j, start, i + 1 - j, k) * L.block(j, start, 1, k).transpose();
-      col[0] += epsilon;
-      if (!(col[0] > Scalar(0))) {
-        return "H is not positive definite (hint: set settings.regularization > 0 for PSD H)";
+    // Block [start, i]; rows [start, keep) of L are kept.
+    reuse = reuse && block_end_[start] == static_cast<int>(i + 1);
+    Index keep = start;
+    if (reuse) {
+      keep = i + 1;
+      for (Index j = start; j < keep; ++j) {  // the first changed row at or below (j, j)
+        for (Index r = j; r < keep; ++r) {
+          if (p_.H(r, j) != H_factored_(r, j)) {
+            keep = r;
+            break;
+          }
+        }
       }
-      const Scalar diag = std::sqrt(col[0]);
-      L(j, j) = diag;
-      inv_diag_[j] = Scalar(1) / diag;
-      L.col(j).segment(j + 1, i - j) = col.tail(i - j) / diag;
-      max_diag = std::max(max_diag, diag);
-      min_diag = std::min(min_diag, diag);
+    }
+    block_end_[start] = static_cast<int>(i + 1);
+    const char* not_pd =
+        "H is not positive definite (hint: set settings.regularization > 0 for PSD H)";
+    if (keep == start) {  // the whole block, column by column
+      for (Index j = start; j <= i; ++j) {
+        const Index k = j - start;
+        auto col = tmp_.segment(j, i + 1 - j);
+        col.noalias() = p_.H.col(j).segment(j, i + 1 - j) -
+                        L.block(j, start, i + 1 - j, k) * L.block(j, start, 1, k).transpose();
+        H_factored_.col(j).segment(j, i + 1 - j) = p_.H.col(j).segment(j, i + 1 - j);
+        col[0] += epsilon;
+        if (!(col[0] > Scalar(0))) return not_pd;
+        const Scalar diag = std::sqrt(col[0]);
+        L(j, j) = diag;
+        inv_diag_[j] = Scalar(1) / diag;
+        L.col(j).segment(j + 1, i - j) = col.tail(i - j) / diag;
+      }
+    } else {  // rows [keep, i] only, each by forward substitution with the rows above it
+      for (Index r = keep; r <= i; ++r) {
+        const Index k = r - start;
+        auto row = tmp_.head(k);  // L(r, start..r−1)ᵀ = L_11⁻¹ H(start..r−1, r)
+        row = p_.H.row(r).segment(start, k).transpose();
+        H_factored_.row(r).segment(start, k + 1) = p_.H.row(r).segment(start, k + 1);
+        detail::lower_solve<kPanel>(&L.coeffRef(start, start), L.outerStride(), &inv_diag_[start],
+                                    row.data(), k);
+        L.row(r).segment(start, k) = row.transpose();
+        const Scalar pivot = p_.H(r, r) + epsilon - row.squaredNorm();
+        if (!(pivot > Scalar(0))) return not_pd;
+        L(r, r) = std::sqrt(pivot);
+        inv_diag_[r] = Scalar(1) / L(r, r);
+      }
+    }
+    for (Index j = start; j <= i; ++j) {
+      max_diag = std::max(max_diag, L(j, j));
+      min_diag = std::min(min_diag, L(j, j));
     }
     start = i + 1;
     reach = start;
@@ -772,6 +816,7 @@ const char* DenseQp<Scalar, Vars, Rows>::factorize() {
     return "H is numerically singular (hint: set settings.regularization > 0 for PSD H)";
   }
   factorized_ = true;
+  cholesky_cached_ = true;
   return nullptr;
 }
 

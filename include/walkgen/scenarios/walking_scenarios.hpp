@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -185,17 +186,37 @@ inline std::vector<CircleObstacle<double>> heicub_obstacle(const std::string& na
   return {{0.45, 0.2, 0.1, 0.05}};
 }
 
+/// How a heicub_walk() ended.
+enum class PatternWalkStatus : std::uint8_t {
+  ok,                ///< every tick's command was accepted and its NMPC solved
+  command_rejected,  ///< a tick's command was rejected (PatternWalk::command says why)
+  mpc_failed,        ///< a tick's NMPC did not solve (PatternWalk::mpc says how)
+};
+
+/// The enumerator's name ("ok", "command_rejected", "mpc_failed"); "unknown" out of range.
+constexpr const char* to_string(PatternWalkStatus status) noexcept {
+  switch (status) {
+    case PatternWalkStatus::ok:
+      return "ok";
+    case PatternWalkStatus::command_rejected:
+      return "command_rejected";
+    case PatternWalkStatus::mpc_failed:
+      return "mpc_failed";
+  }
+  return "unknown";
+}
+
 /// A walk of the generator interpolated at the command period (heicub_walk()).
 struct PatternWalk {
   std::vector<TrajectorySample<double>> samples;  ///< every command period of the ticks walked
   int ticks = 0;  ///< NMPC ticks walked: all that were asked for, unless a tick failed
-  /// The failed tick's outcomes; accepted and solved when every tick succeeded.
+  PatternWalkStatus status = PatternWalkStatus::ok;
+  std::string message;  ///< which tick failed and how; empty when ok()
+  /// The failed tick's outcomes in detail; accepted and solved when every tick succeeded.
   CommandStatus command = CommandStatus::accepted;
   MpcStatus mpc = MpcStatus::solved;
-  std::string message;  ///< which tick failed and how; empty when ok()
 
-  /// Every tick's command was accepted and its NMPC solved.
-  bool ok() const { return message.empty(); }
+  bool ok() const { return status == PatternWalkStatus::ok; }
 };
 
 /// A Heicub walk (thesis Table 6.1: heicub_settings() unchanged, com_z = 0.45 m, which the
@@ -219,6 +240,8 @@ PatternWalk heicub_walk(const Command& command, int ticks,
     walk.command = mpc.set_command(command(k));
     walk.mpc = mpc.solve().status;
     if (walk.command != CommandStatus::accepted || walk.mpc != MpcStatus::solved) {
+      walk.status = walk.command != CommandStatus::accepted ? PatternWalkStatus::command_rejected
+                                                            : PatternWalkStatus::mpc_failed;
       walk.message = "heicub_walk: tick " + std::to_string(k) + ": command " +
                      to_string(walk.command) + ", NMPC " + to_string(walk.mpc);
       walk.samples.resize(std::size_t(k) * std::size_t(interp.samples_per_tick()));

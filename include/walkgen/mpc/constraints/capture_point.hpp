@@ -56,16 +56,17 @@ class CapturePoint {
     const WalkingLayout& L = t.layout;
     const Eigen::Index n = L.dims().N, nf = L.dims().nf;
     const Foot foot = t.foot_of_step(nf);
-    const Scalar xx = xi_s_.dot(t.state.com_x) + xi_u_.dot(U.segment(L.jerk_x(), n));
-    const Scalar xy = xi_s_.dot(t.state.com_y) + xi_u_.dot(U.segment(L.jerk_y(), n));
-    rotated_polygon_rows(
-        soles_.normals(foot), soles_.offsets(foot), t.q(U, nf), xx - t.x(U, nf), xy - t.y(U, nf), J,
-        lower, upper, rows.offset, [&](const auto& ed, auto& row) {
-          row.segment(L.jerk_x(), n) = ed.rx * xi_u_;
-          row.segment(L.jerk_y(), n) = ed.ry * xi_u_;
-          return ed.rx * xi_u_.dot(U.segment(L.jerk_x(), n)) +
-                 ed.ry * xi_u_.dot(U.segment(L.jerk_y(), n)) + footstep_columns(L, ed, nf, U, row);
-        });
+    const Scalar ux = xi_u_.dot(U.segment(L.jerk_x(), n));  // the jerks' part, per axis
+    const Scalar uy = xi_u_.dot(U.segment(L.jerk_y(), n));
+    const Scalar xx = xi_s_.dot(t.state.com_x) + ux;
+    const Scalar xy = xi_s_.dot(t.state.com_y) + uy;
+    rotated_polygon_rows(soles_.normals(foot), soles_.offsets(foot), t.q(U, nf), xx - t.x(U, nf),
+                         xy - t.y(U, nf), J, lower, upper, rows.offset,
+                         [&](const auto& ed, auto& row) {
+                           row.segment(L.jerk_x(), n) = ed.rx * xi_u_;
+                           row.segment(L.jerk_y(), n) = ed.ry * xi_u_;
+                           return ed.rx * ux + ed.ry * uy + footstep_columns(L, ed, nf, U, row);
+                         });
   }
 
   /// ξ_N = ξ_s c_k + ξ_u U_c (per axis).

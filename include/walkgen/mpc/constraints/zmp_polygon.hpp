@@ -70,14 +70,15 @@ class ZmpPolygon {
           P.P_zs.row(j).dot(t.state.com_x) + P.P_zu.row(j).dot(U.segment(L.jerk_x(), n));
       const Scalar zy =
           P.P_zs.row(j).dot(t.state.com_y) + P.P_zu.row(j).dot(U.segment(L.jerk_y(), n));
+      const auto p = P.P_zu.row(j).head(j + 1);                // P_zu is lower triangular
+      const Scalar pux = p.dot(U.segment(L.jerk_x(), j + 1));  // the jerks' part of J U, per axis
+      const Scalar puy = p.dot(U.segment(L.jerk_y(), j + 1));
       rotated_polygon_rows(soles_.normals(foot), soles_.offsets(foot), t.q(U, s), zx - t.x(U, s),
                            zy - t.y(U, s), J, lower, upper, rows.offset + j * soles_.edges(),
                            [&](const auto& ed, auto& row) {
-                             const auto p = P.P_zu.row(j).head(j + 1);
                              row.segment(L.jerk_x(), j + 1) = ed.rx * p;
                              row.segment(L.jerk_y(), j + 1) = ed.ry * p;
-                             Scalar lin = ed.rx * p.dot(U.segment(L.jerk_x(), j + 1)) +
-                                          ed.ry * p.dot(U.segment(L.jerk_y(), j + 1));
+                             Scalar lin = ed.rx * pux + ed.ry * puy;
                              if (s > 0) lin += footstep_columns(L, ed, s, U, row);
                              return lin;
                            });

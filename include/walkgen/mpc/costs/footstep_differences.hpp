@@ -6,18 +6,36 @@
 /// target T_1 by WalkingSchedule). Hessian w DᵀD (constant), gradient −w DᵀT (eq. 2.56–2.57).
 
 #include <Eigen/Core>
+#include <cstdint>
 
 #include "walkgen/mpc/walking_layout.hpp"
 #include "walkgen/mpc/walking_schedule.hpp"
 
 namespace walkgen {
 
+/// Which footstep variables a FootstepDifferences term acts on.
+enum class FootstepGroup : std::uint8_t {
+  positions,  ///< x and y (StepVelocity)
+  yaws,       ///< θ (YawRate)
+};
+
+/// The enumerator's name ("positions", "yaws"), e.g. for logs; "unknown" out of range.
+constexpr const char* to_string(FootstepGroup group) noexcept {
+  switch (group) {
+    case FootstepGroup::positions:
+      return "positions";
+    case FootstepGroup::yaws:
+      return "yaws";
+  }
+  return "unknown";
+}
+
 /// The difference-operator term on the footstep positions (targets WalkingSchedule::step_x,
 /// step_y) or on the footstep yaws (target WalkingSchedule::yaw).
 template <typename Scalar>
 class FootstepDifferences {
  public:
-  enum class Group { positions, yaws };
+  using Group = FootstepGroup;
 
   FootstepDifferences(Scalar weight, Group group) : w_(weight), group_(group) {}
   Scalar weight() const { return w_; }
