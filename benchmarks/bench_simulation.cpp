@@ -27,7 +27,7 @@ void report(benchmark::State& state, double simulated_per_iteration) {
 void BM_ClosedLoopTick(benchmark::State& state) {
   walkgen::MujocoRobot robot;
   walkgen::HumanoidIk ik(tree());
-  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  const walkgen::WalkingSettings<double> settings = walkgen::walkgen_humanoid_description().walking;
   walkgen::SimLoop loop(settings, robot, ik);
   if (loop.start().status != walkgen::LoopStatus::ok) {
     state.SkipWithError("start failed");
@@ -61,7 +61,7 @@ BENCHMARK(BM_ClosedLoopTick)->Unit(benchmark::kMillisecond)->UseRealTime();
 // MuJoCo alone: 0.4 s of physics with fixed servo targets (the standing robot).
 void BM_PhysicsOnly(benchmark::State& state) {
   walkgen::MujocoRobot robot;
-  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  const walkgen::WalkingSettings<double> settings = walkgen::walkgen_humanoid_description().walking;
   for (auto _ : state) {
     for (int k = 0; k < 40; ++k) {
       if (robot.step(settings.command_period) != walkgen::RobotStatus::ok) {
@@ -76,7 +76,7 @@ BENCHMARK(BM_PhysicsOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The controller alone: one NMPC tick and the 40 IK solves of its samples, no physics.
 void BM_ControllerOnly(benchmark::State& state) {
-  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  const walkgen::WalkingSettings<double> settings = walkgen::walkgen_humanoid_description().walking;
   walkgen::WalkingMpc<double, 16> mpc(settings);
   walkgen::WalkingInterpolator<double> interp(walkgen::interpolation_settings(settings));
   std::vector<walkgen::TrajectorySample<double>> samples(std::size_t(interp.samples_per_tick()));

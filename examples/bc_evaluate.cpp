@@ -48,6 +48,7 @@
 #include "common/cli.hpp"
 #include "common/navigation_cli.hpp"
 #include "walkgen/navigation/scripted_expert.hpp"
+#include "walkgen/robot/robot_description.hpp"
 #include "walkgen/torch/velocity_network.hpp"
 
 namespace {
@@ -136,7 +137,7 @@ int main(int argc, char** argv) {
   csv << "task,seed,reached,collided,fell,time,final_distance,zmp_distance_mean,"
          "command_entropy,inference_ms,target_x,target_y,chair_x,chair_y,chair_radius\n";
   paths << "task,seed,time,x,y,yaw,v_x,omega_z\n";
-  const Eigen::Vector3d max_command = walkgen::heicub_settings().max_command;
+  const Eigen::Vector3d max_command = walkgen::walkgen_humanoid_description().walking.max_command;
   int total_reached = 0, total = 0;
   for (walkgen::NavigationTask task : tasks) {
     int reached = 0;

@@ -33,6 +33,7 @@
 #include "common/cli.hpp"
 #include "common/navigation_cli.hpp"
 #include "walkgen/navigation/scripted_expert.hpp"
+#include "walkgen/robot/robot_description.hpp"
 
 int main(int argc, char** argv) {
   std::string out;
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
       return 2;
     }
     walkgen::DemonstrationRecorder& recorder = *recorder_slot;
-    walkgen::ScriptedExpert expert(scene, walkgen::heicub_settings().max_command);
+    walkgen::ScriptedExpert expert(scene,
+                                   walkgen::walkgen_humanoid_description().walking.max_command);
     walkgen::NavigationOptions options;
     options.recorder = &recorder;
     const bool perturbed = noise > 0.0 && e % 2 == 1;

@@ -233,8 +233,9 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, on_signal);
 
   const walkgen::KinematicTree<double> tree = walkgen::humanoid_tree();
-  walkgen::MujocoRobotSettings robot_settings;
-  walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  const walkgen::RobotDescription humanoid = walkgen::walkgen_humanoid_description();
+  walkgen::MujocoRobotSettings robot_settings = walkgen::mujoco_robot_settings(humanoid);
+  walkgen::WalkingSettings<double> settings = humanoid.walking;
   if (scene) {
     robot_settings.objects = scene->objects();
     settings.obstacles = scene->obstacles_at(0.0, kRoomObstacleMargin);  // chairs and person

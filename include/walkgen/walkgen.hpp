@@ -19,4 +19,5 @@
 #include "walkgen/mpc/walking_mpc.hpp"
 #include "walkgen/qp/dense_qp.hpp"
 #include "walkgen/robot/robot.hpp"
+#include "walkgen/robot/robot_description.hpp"
 #include "walkgen/version.hpp"

@@ -42,6 +42,7 @@
 #include "walkgen/kinematics/kinematic_tree.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
 #include "walkgen/robot/robot.hpp"
+#include "walkgen/robot/robot_description.hpp"
 
 namespace walkgen {
 
@@ -86,11 +87,13 @@ struct WalkingLoopSettings {
   /// acceleration stay the plan's: differentiated joint measurements are too noisy to help.
   double feedback_gain = 1.0;
   /// Sole links of the tree (left, right): where the IK puts the feet and the feedback starts.
-  std::string left_sole_link = "l_sole";
-  std::string right_sole_link = "r_sole";
+  /// Defaults: walkgen's humanoid (walkgen_humanoid_description()); loop_settings() takes them
+  /// from any description.
+  std::string left_sole_link = walkgen_humanoid_description().sole_frames[0];
+  std::string right_sole_link = walkgen_humanoid_description().sole_frames[1];
   /// Frames of the ankle force-torque sensors in the tree (left, right).
-  std::string left_ft_sensor_link = "l_foot_ft_sensor";
-  std::string right_ft_sensor_link = "r_foot_ft_sensor";
+  std::string left_ft_sensor_link = walkgen_humanoid_description().ft_sensor_frames[0];
+  std::string right_ft_sensor_link = walkgen_humanoid_description().ft_sensor_frames[1];
   /// [s] start(): time to move the CoM from where it stands over the support foot.
   double transfer_time = 2.0;
 };
@@ -103,6 +106,16 @@ inline void validate(const WalkingLoopSettings& s) {
                  "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]", s.feedback_gain);
   check_argument(std::isfinite(s.transfer_time) && s.transfer_time >= 0.0,
                  "WalkingLoopSettings.transfer_time", "a duration >= 0 [s]", s.transfer_time);
+}
+
+/// The loop settings with `robot`'s sole and sensor frames; the rest at their defaults.
+inline WalkingLoopSettings loop_settings(const RobotDescription& robot) {
+  WalkingLoopSettings s;
+  s.left_sole_link = robot.sole_frames[0];
+  s.right_sole_link = robot.sole_frames[1];
+  s.left_ft_sensor_link = robot.ft_sensor_frames[0];
+  s.right_ft_sensor_link = robot.ft_sensor_frames[1];
+  return s;
 }
 
 /// One command period of the loop: what was planned and what was measured after it.

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// walkgen's humanoid (models/: 15 joints, Heicub-like) for inverse kinematics: its kinematic
-/// tree from the URDF, the standing posture of the MJCF keyframe "stand", and HumanoidIk, the
+/// walkgen's humanoid (models/: 15 joints, Heicub-like; walkgen_humanoid_description()) for
+/// inverse kinematics: its kinematic tree from the URDF, its standing posture, and HumanoidIk, the
 /// Ceres whole-body IK sized for it, started from that posture. Used by the closed loop
 /// (walkgen/simulation/), the IK tests, bench_kinematics and examples/walking_joints.
 ///
@@ -16,6 +16,7 @@
 #include "walkgen/control/pattern_targets.hpp"
 #include "walkgen/core/data_dir.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
+#include "walkgen/robot/robot_description.hpp"
 #include "walkgen/urdf/urdf_loader.hpp"
 
 namespace walkgen {
@@ -25,51 +26,54 @@ constexpr int kHumanoidJoints = 15;
 /// The Ceres whole-body IK of walkgen's humanoid.
 using HumanoidIk = CeresInverseKinematics<kHumanoidJoints>;
 
-/// The humanoid's kinematic tree, read from humanoid_urdf_path().
+/// The kinematic tree of `robot` (default walkgen's humanoid), read from its URDF.
 /// @throws walkgen::invalid_argument when the URDF cannot be read or is malformed.
-inline KinematicTree<double> humanoid_tree() {
-  return kinematic_tree_from_urdf_file(humanoid_urdf_path());
+inline KinematicTree<double> humanoid_tree(
+    const RobotDescription& robot = walkgen_humanoid_description()) {
+  return kinematic_tree_from_urdf_file(robot.urdf_path);
 }
 
-/// The MJCF keyframe "stand": hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad (soles flat), every
-/// other joint 0.
-/// @throws walkgen::invalid_argument when `tree` lacks one of those joints.
-inline Eigen::VectorXd stand_configuration(const KinematicTree<double>& tree) {
+/// `robot`'s standing posture (RobotDescription::stand_pose; walkgen's humanoid: the MJCF
+/// keyframe "stand", hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad, soles flat) in the joint
+/// order of `tree`, every other joint 0.
+/// @throws walkgen::invalid_argument when `tree` lacks one of the posture's joints.
+inline Eigen::VectorXd stand_configuration(
+    const KinematicTree<double>& tree,
+    const RobotDescription& robot = walkgen_humanoid_description()) {
   Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
-  for (const char* side : {"l_", "r_"}) {
-    const std::string s(side);
-    q[tree.joint_index(s + "hip_pitch")] = -0.5;
-    q[tree.joint_index(s + "knee")] = 1.0;
-    q[tree.joint_index(s + "ankle_pitch")] = -0.5;
-  }
+  for (const JointAngle& a : robot.stand_pose) q[tree.joint_index(a.joint)] = a.angle;
   return q;
 }
 
 /// The root position [m] that puts the standing robot's left sole at `left_sole_W` (upright
 /// base).
-inline Eigen::Vector3d stand_base_position(const KinematicTree<double>& tree,
-                                           const Eigen::Vector3d& left_sole_W) {
+inline Eigen::Vector3d stand_base_position(
+    const KinematicTree<double>& tree, const Eigen::Vector3d& left_sole_W,
+    const RobotDescription& robot = walkgen_humanoid_description()) {
   auto ws = tree.make_workspace();
   tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
-                          stand_configuration(tree), ws);
-  return left_sole_W - ws.position_W(tree.link_index("l_sole"));
+                          stand_configuration(tree, robot), ws);
+  return left_sole_W - ws.position_W(tree.link_index(robot.sole_frames[0]));
 }
 
-/// Sets the standing posture as the initial guess of `ik` (HumanoidIk or any IK with
+/// Sets `robot`'s standing posture as the initial guess of `ik` (HumanoidIk or any IK with
 /// tree() and set_initial_guess()), base upright turned by `yaw` [rad], left sole at
 /// `left_sole_W` [m].
 template <typename Ik>
-void start_standing(Ik& ik, const Eigen::Vector3d& left_sole_W, double yaw = 0.0) {
+void start_standing(Ik& ik, const Eigen::Vector3d& left_sole_W, double yaw = 0.0,
+                    const RobotDescription& robot = walkgen_humanoid_description()) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Vector3d offset = stand_base_position(ik.tree(), Eigen::Vector3d::Zero());
-  ik.set_initial_guess(left_sole_W + R * offset, R, stand_configuration(ik.tree()));
+  const Eigen::Vector3d offset = stand_base_position(ik.tree(), Eigen::Vector3d::Zero(), robot);
+  ik.set_initial_guess(left_sole_W + R * offset, R, stand_configuration(ik.tree(), robot));
 }
 
-/// Sets the standing posture under the first sample of a walk as the initial guess of `ik`.
+/// Sets `robot`'s standing posture under the first sample of a walk as the initial guess of
+/// `ik`.
 template <typename Ik>
-void start_walk(Ik& ik, const TrajectorySample<double>& first) {
+void start_walk(Ik& ik, const TrajectorySample<double>& first,
+                const RobotDescription& robot = walkgen_humanoid_description()) {
   const IkTarget t = ik_target(first);
-  start_standing(ik, t.left_foot.position_W, first.com_q[0]);
+  start_standing(ik, t.left_foot.position_W, first.com_q[0], robot);
 }
 
 }  // namespace walkgen

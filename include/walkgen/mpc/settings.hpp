@@ -1,8 +1,10 @@
 #pragma once
 /// @file
 /// Settings of the walking pattern generator: every key of the thesis's configuration file
-/// (Table 6.1), with units, plus the few limits the thesis's code hard-coded. Two robots as code
-/// presets: hrp2_settings() and heicub_settings(). validate() says what is wrong with a set.
+/// (Table 6.1), with units, plus the few limits the thesis's code hard-coded, in three parts:
+/// RobotGeometry (the robot), GeneratorSettings (how it plans), InitialState (where it starts);
+/// WalkingSettings is the three plus the obstacles. Two robots as code presets: hrp2_settings()
+/// and heicub_settings(). validate() says what is wrong with a set or a part.
 ///
 /// Key names follow Table 6.1 so that existing YAML files load unchanged (the YAML reader lives
 /// in an adapter; the core needs Eigen only).
@@ -11,6 +13,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
@@ -38,16 +41,14 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 2> mirror_y(Eigen::Matrix<Scalar, Eigen::D
 }
 }  // namespace detail
 
-/// Pattern generator settings. The in-class defaults are the HRP-2 set (hrp2_settings()).
+/// The robot and the world it walks in: its feet, where a foot may land, its CoM height, how it
+/// may turn its feet, gravity. Part of WalkingSettings (a robot preset holds one); the flat keys
+/// of Table 6.1 map onto it unchanged. In-class defaults: HRP-2.
 template <typename Scalar = double>
-struct WalkingSettings {
+struct RobotGeometry {
   using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
-  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
   using Polygon = Eigen::Matrix<Scalar, Eigen::Dynamic, 2>;
 
-  // --- Specifications -------------------------------------------------------------------------
-  /// [s] duration of one step, single + double support (`t_step`). Longer: slower, calmer gait.
-  Scalar t_step = Scalar(0.8);
   /// [m] how far the ZMP polygon is shrunk from the foot's edges in x and y (`security_margin`,
   /// fig. 6.4). Larger: more robust balance, less room for the ZMP, shorter feasible steps.
   Vector2 security_margin = Vector2(Scalar(0.09), Scalar(0.05));
@@ -59,33 +60,37 @@ struct WalkingSettings {
   Scalar foot_width = Scalar(0.1380);   ///< [m] sole size across the foot (y), `foot_width`
   Scalar foot_length = Scalar(0.2172);  ///< [m] sole size along the foot (x), `foot_length`
   Scalar foot_distance = Scalar(0.2);  ///< [m] lateral distance of the feet frames, `foot_distance`
-
-  // --- Interpolation --------------------------------------------------------------------------
-  Scalar command_period = Scalar(0.005);  ///< [s] period of the interpolated trajectories
-  int n_still = 0;                    ///< preview horizons to stand still at the start, `n_still`
-  Scalar t_ds = Scalar(0.4);          ///< [s] double support time within each step, `t_ds`
+  /// [m] optional ZMP support polygon of the left foot, in its foot frame (E × 2, convex); the
+  /// right foot's is its mirror image. Empty: the foot_length × foot_width rectangle shrunk by
+  /// security_margin (fig. 6.4). Its edge count must match the generator's FootEdges.
+  Polygon zmp_polygon;
   Scalar step_height = Scalar(0.05);  ///< [m] apex height of the swing foot (eq. 2.95)
-
-  // --- Initial values -------------------------------------------------------------------------
-  Vector3 com_x = Vector3(Scalar(0), Scalar(0), Scalar(0));    ///< CoM x, ẋ, ẍ [m, m/s, m/s²]
-  Vector3 com_y = Vector3(Scalar(0.1), Scalar(0), Scalar(0));  ///< CoM y, ẏ, ÿ
-  Scalar com_z = Scalar(0.814);                                ///< [m] CoM height c_z (eq. 2.40)
-  Vector3 com_q = Vector3(Scalar(0), Scalar(0), Scalar(0));  ///< CoM yaw θ, θ̇, θ̈ [rad, …]
-  Foot support_foot = Foot::left;                            ///< initial support foot
-  Scalar foot_x = Scalar(0);    ///< [m] initial support foot x (eq. 2.47)
-  Scalar foot_y = Scalar(0.1);  ///< [m] initial support foot y
-  Scalar foot_q = Scalar(0);    ///< [rad] initial support foot yaw
-
-  // --- Environment ----------------------------------------------------------------------------
+  Scalar com_z = Scalar(0.814);       ///< [m] CoM height c_z (eq. 2.40)
+  /// [rad] |θ_L − θ_R| between the feet at every instant (eq. 2.73). A turn at ω needs
+  /// ω·t_step between consecutive footsteps: 0.16 rad for the 0.2 rad/s turn at t_step 0.8 s,
+  /// which the thesis code's 0.09 rad could never allow (its HRP-2 turned at half the command).
+  Scalar max_relative_yaw = Scalar(0.25);
+  /// [rad/s] peak |θ̇_L − θ̇_R| (eq. 2.74): the swing foot's yaw rate relative to the support
+  /// foot on its 5th-order yaw polynomial, 15/8 · Δθ / (t_step − t_ds). The 0.2 rad/s turn at
+  /// HRP-2's timing needs 1.5 rad/s (Δθ = 0.32 rad in 0.4 s).
+  Scalar max_relative_yaw_rate = Scalar(2.0);
   Scalar gravity = Scalar(9.81);  ///< [m/s²]
+};
 
-  // --- Obstacles (Table 6.1 has one: `obstacle`, `x_pos`, `y_pos`, `radius`) ------------------
-  std::vector<CircleObstacle<Scalar>> obstacles;
+/// How the generator plans: timing, horizon, cost weights, solver limits, the commands it
+/// accepts and the states it believes. Part of WalkingSettings. In-class defaults: HRP-2's.
+template <typename Scalar = double>
+struct GeneratorSettings {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
 
-  // --- Optimisation ---------------------------------------------------------------------------
-  int n = 16;                       ///< preview intervals N (eq. 2.30)
-  Scalar t = Scalar(0.1);           ///< [s] preview sampling period T (eq. 2.31)
-  Scalar t_feedback = Scalar(0.1);  ///< [s] CoM and feet feedback period, `t_feedback`
+  /// [s] duration of one step, single + double support (`t_step`). Longer: slower, calmer gait.
+  Scalar t_step = Scalar(0.8);
+  Scalar t_ds = Scalar(0.4);              ///< [s] double support time within each step, `t_ds`
+  int n = 16;                             ///< preview intervals N (eq. 2.30)
+  Scalar t = Scalar(0.1);                 ///< [s] preview sampling period T (eq. 2.31)
+  Scalar t_feedback = Scalar(0.1);        ///< [s] CoM and feet feedback period, `t_feedback`
+  Scalar command_period = Scalar(0.005);  ///< [s] period of the interpolated trajectories
+  int n_still = 0;  ///< preview horizons to stand still at the start, `n_still`
   /// Cost weights (eq. 2.43–2.46): alpha tracks the velocity command, beta centres the ZMP in the
   /// foot, gamma penalises jerk. Raising beta trades command tracking for ZMP margin; gamma > 0
   /// keeps the QP strictly convex and smooths the CoM.
@@ -101,16 +106,6 @@ struct WalkingSettings {
   Scalar cpu_time = Scalar(0.01);
   /// Maximal active-set changes per QP solve (`nwsr`); reaching it fails the tick safely.
   int nwsr = 100;
-
-  // --- Limits hard-coded in the thesis's code, made settings here --------------------------------
-  /// [rad] |θ_L − θ_R| between the feet at every instant (eq. 2.73). A turn at ω needs
-  /// ω·t_step between consecutive footsteps: 0.16 rad for the 0.2 rad/s turn at t_step 0.8 s,
-  /// which the thesis code's 0.09 rad could never allow (its HRP-2 turned at half the command).
-  Scalar max_relative_yaw = Scalar(0.25);
-  /// [rad/s] peak |θ̇_L − θ̇_R| (eq. 2.74): the swing foot's yaw rate relative to the support
-  /// foot on its 5th-order yaw polynomial, 15/8 · Δθ / (t_step − t_ds). The 0.2 rad/s turn at
-  /// HRP-2's timing needs 1.5 rad/s (Δθ = 0.32 rad in 0.4 s).
-  Scalar max_relative_yaw_rate = Scalar(2.0);
   /// Largest accepted velocity command (|v_x| [m/s], |v_y| [m/s], |ω_z| [rad/s]); larger or
   /// non-finite commands are rejected with a status and the previous command is kept. The
   /// presets accept what their feasibility polygons and yaw limit can reach: HRP-2 steps at most
@@ -122,10 +117,6 @@ struct WalkingSettings {
   /// QP strictly convex when the last planned step has no ZMP sample in the horizon (at the
   /// first sample of every step); small enough not to move a step that the cost determines.
   Scalar footstep_regularization = Scalar(1e-9);
-  /// [m] optional ZMP support polygon of the left foot, in its foot frame (E × 2, convex); the
-  /// right foot's is its mirror image. Empty: the foot_length × foot_width rectangle shrunk by
-  /// security_margin (fig. 6.4). Its edge count must match the generator's FootEdges.
-  Polygon zmp_polygon;
   /// Gauss–Newton iterations per tick: 1 is the real-time iteration (eq. 2.83–2.89).
   int sqp_iterations = 1;
   /// Further Gauss–Newton iterations, at most, when the plan violates the nonlinear
@@ -137,7 +128,6 @@ struct WalkingSettings {
   /// [m] largest tolerated violation of the nonlinear constraints (a distance beyond a
   /// polygon edge or inside an obstacle's margin) before a correction iteration.
   Scalar sqp_tolerance = Scalar(1e-3);
-
   /// Plausibility limits of WalkingMpc::set_state(): a state beyond them is a feedback glitch,
   /// not a walking robot, and is rejected with an error. [m] the largest horizontal distance of
   /// the CoM, the swing foot and its origin from the support foot.
@@ -161,6 +151,59 @@ struct WalkingSettings {
     return S > 0 ? static_cast<int>((static_cast<long long>(n) + S - 2) / S) : 0;
   }
 };
+
+/// Where the walk starts: the CoM's state and the support foot (Table 6.1's initial values).
+/// Part of WalkingSettings. In-class defaults: HRP-2's.
+template <typename Scalar = double>
+struct InitialState {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+
+  Vector3 com_x = Vector3(Scalar(0), Scalar(0), Scalar(0));    ///< CoM x, ẋ, ẍ [m, m/s, m/s²]
+  Vector3 com_y = Vector3(Scalar(0.1), Scalar(0), Scalar(0));  ///< CoM y, ẏ, ÿ
+  Vector3 com_q = Vector3(Scalar(0), Scalar(0), Scalar(0));  ///< CoM yaw θ, θ̇, θ̈ [rad, …]
+  Foot support_foot = Foot::left;                            ///< initial support foot
+  Scalar foot_x = Scalar(0);    ///< [m] initial support foot x (eq. 2.47)
+  Scalar foot_y = Scalar(0.1);  ///< [m] initial support foot y
+  Scalar foot_q = Scalar(0);    ///< [rad] initial support foot yaw
+};
+
+/// Pattern generator settings: every key of Table 6.1 plus walkgen's own, in three parts that
+/// can be set and validated on their own (a robot's geometry, the generator's settings, the
+/// initial state) and the obstacles. The members of the parts are members of WalkingSettings
+/// (`s.t_step`, `s.foot_width`, the flat keys of the thesis's files); geometry(), generator()
+/// and initial_state() give the parts. The in-class defaults are the HRP-2 set (hrp2_settings()).
+template <typename Scalar = double>
+struct WalkingSettings : RobotGeometry<Scalar>, GeneratorSettings<Scalar>, InitialState<Scalar> {
+  using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Polygon = Eigen::Matrix<Scalar, Eigen::Dynamic, 2>;
+
+  /// Circles the footsteps keep out of (Table 6.1 has one: `obstacle`, `x_pos`, `y_pos`,
+  /// `radius`; walkgen any number).
+  std::vector<CircleObstacle<Scalar>> obstacles;
+
+  RobotGeometry<Scalar>& geometry() { return *this; }
+  const RobotGeometry<Scalar>& geometry() const { return *this; }
+  GeneratorSettings<Scalar>& generator() { return *this; }
+  const GeneratorSettings<Scalar>& generator() const { return *this; }
+  InitialState<Scalar>& initial_state() { return *this; }
+  const InitialState<Scalar>& initial_state() const { return *this; }
+};
+
+/// Settings assembled from their parts (e.g. a robot preset's geometry with a generator tuned
+/// for a task and a chosen start).
+template <typename Scalar>
+WalkingSettings<Scalar> walking_settings(const RobotGeometry<Scalar>& geometry,
+                                         const GeneratorSettings<Scalar>& generator,
+                                         const InitialState<Scalar>& initial,
+                                         std::vector<CircleObstacle<Scalar>> obstacles = {}) {
+  WalkingSettings<Scalar> s;
+  s.geometry() = geometry;
+  s.generator() = generator;
+  s.initial_state() = initial;
+  s.obstacles = std::move(obstacles);
+  return s;
+}
 
 /// HRP-2 (thesis §9.1, figures 9.1–9.3): the in-class defaults.
 template <typename Scalar = double>
@@ -229,37 +272,80 @@ bool is_multiple(Scalar value, Scalar period) {
 }
 }  // namespace detail
 
-/// Checks a settings set before a generator is built from it.
-/// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
+namespace detail {
+/// The checks validate() shares: each names the key ("WalkingSettings.<key>", the flat key of
+/// the YAML files) and builds its message only when it fails.
 template <typename Scalar>
-void validate(const WalkingSettings<Scalar>& s) {
-  namespace lim = settings_limits;
-  auto check_count = [](const char* where, int value, int lo, int hi) {
+struct SettingsChecks {
+  static void count(const char* where, int value, int lo, int hi) {
     check_argument(value >= lo && value <= hi, where,
                    "a count in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", value);
-  };
-  // value in [lo, hi], or in (lo, hi] with lower_open; the message only on failure.
-  auto check_range = [](const char* where, Scalar value, double lo, double hi, bool lower_open) {
+  }
+  /// value in [lo, hi], or in (lo, hi] with lower_open.
+  static void range(const char* where, Scalar value, double lo, double hi, bool lower_open) {
     const bool above = lower_open ? value > Scalar(lo) : value >= Scalar(lo);
     if (!(std::isfinite(value) && above && value <= Scalar(hi))) {
-      std::ostringstream range;
-      range << "a value in " << (lower_open ? "(" : "[") << lo << ", " << hi << "]";
-      check_argument(false, where, range.str(), value);
+      std::ostringstream text;
+      text << "a value in " << (lower_open ? "(" : "[") << lo << ", " << hi << "]";
+      check_argument(false, where, text.str(), value);
     }
-  };
-  auto check_up_to = [&](const char* where, Scalar value, double hi, bool zero_ok) {
-    check_range(where, value, 0.0, hi, !zero_ok);
-  };
-  auto check_between = [&](const char* where, Scalar value, double lo, double hi) {
-    check_range(where, value, lo, hi, false);
-  };
-  auto check_position = [](const char* where, Scalar value) {
-    check_argument(std::isfinite(value) && std::abs(value) <= Scalar(lim::kMaxPosition), where,
-                   "a finite value with |value| <= 1e6", value);
-  };
-  check_count("WalkingSettings.n", s.n, 1, lim::kMaxHorizon);
-  check_between("WalkingSettings.t", s.t, lim::kMinPeriod, lim::kMaxPeriod);
-  check_between("WalkingSettings.t_step", s.t_step, lim::kMinPeriod, lim::kMaxPeriod);
+  }
+  static void up_to(const char* where, Scalar value, double hi, bool zero_ok) {
+    range(where, value, 0.0, hi, !zero_ok);
+  }
+  static void between(const char* where, Scalar value, double lo, double hi) {
+    range(where, value, lo, hi, false);
+  }
+  static void position(const char* where, Scalar value) {
+    check_argument(std::isfinite(value) && std::abs(value) <= Scalar(settings_limits::kMaxPosition),
+                   where, "a finite value with |value| <= 1e6", value);
+  }
+  template <typename Vertices>
+  static void polygon(const char* where, const Vertices& vertices) {
+    check_argument(vertices.allFinite() &&
+                       (vertices.array().abs() <= Scalar(settings_limits::kMaxPosition)).all(),
+                   where, "vertices with |coordinate| <= 1e6 m", "NaN, inf or larger");
+    check_convex_polygon(where, vertices);
+  }
+};
+}  // namespace detail
+
+/// Checks a robot's geometry on its own.
+/// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
+template <typename Scalar>
+void validate(const RobotGeometry<Scalar>& s) {
+  namespace lim = settings_limits;
+  using C = detail::SettingsChecks<Scalar>;
+  C::up_to("WalkingSettings.step_height", s.step_height, lim::kMaxPosition, true);
+  C::up_to("WalkingSettings.foot_width", s.foot_width, lim::kMaxPosition, false);
+  C::up_to("WalkingSettings.foot_length", s.foot_length, lim::kMaxPosition, false);
+  C::up_to("WalkingSettings.foot_distance", s.foot_distance, lim::kMaxPosition, false);
+  C::up_to("WalkingSettings.security_margin[0]", s.security_margin[0], lim::kMaxPosition, true);
+  C::up_to("WalkingSettings.security_margin[1]", s.security_margin[1], lim::kMaxPosition, true);
+  check_argument(Scalar(2) * s.security_margin[0] < s.foot_length,
+                 "WalkingSettings.security_margin[0]", "less than half the foot length",
+                 s.security_margin[0], "the shrunk support polygon would be empty");
+  check_argument(Scalar(2) * s.security_margin[1] < s.foot_width,
+                 "WalkingSettings.security_margin[1]", "less than half the foot width",
+                 s.security_margin[1], "the shrunk support polygon would be empty");
+  C::polygon("WalkingSettings.left_foot_convex_hull", s.left_foot_convex_hull);
+  C::polygon("WalkingSettings.right_foot_convex_hull", s.right_foot_convex_hull);
+  C::between("WalkingSettings.com_z", s.com_z, 1e-3, lim::kMaxPosition);
+  C::between("WalkingSettings.gravity", s.gravity, 1e-2, 1e3);
+  C::up_to("WalkingSettings.max_relative_yaw", s.max_relative_yaw, 1e3, false);
+  C::up_to("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate, 1e3, false);
+  if (s.zmp_polygon.rows() > 0) C::polygon("WalkingSettings.zmp_polygon", s.zmp_polygon);
+}
+
+/// Checks the generator's settings on their own.
+/// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
+template <typename Scalar>
+void validate(const GeneratorSettings<Scalar>& s) {
+  namespace lim = settings_limits;
+  using C = detail::SettingsChecks<Scalar>;
+  C::count("WalkingSettings.n", s.n, 1, lim::kMaxHorizon);
+  C::between("WalkingSettings.t", s.t, lim::kMinPeriod, lim::kMaxPeriod);
+  C::between("WalkingSettings.t_step", s.t_step, lim::kMinPeriod, lim::kMaxPeriod);
   check_argument(s.t_step / s.t <= Scalar(lim::kMaxSamplesPerStep), "WalkingSettings.t_step",
                  "at most 1000 samples of t = " + std::to_string(s.t) + " s per step", s.t_step);
   check_argument(s.t_step >= s.t && detail::is_multiple(s.t_step, s.t), "WalkingSettings.t_step",
@@ -274,66 +360,58 @@ void validate(const WalkingSettings<Scalar>& s) {
                  "the ZMP moves to the new foot during the first interval of every step");
   check_argument(s.t_ds < s.t_step, "WalkingSettings.t_ds", "a double support shorter than t_step",
                  s.t_ds);
-  check_between("WalkingSettings.t_ds", s.t_ds, lim::kMinPeriod, lim::kMaxPeriod);
-  check_between("WalkingSettings.command_period", s.command_period, lim::kMinPeriod,
-                lim::kMaxPeriod);
+  C::between("WalkingSettings.t_ds", s.t_ds, lim::kMinPeriod, lim::kMaxPeriod);
+  C::between("WalkingSettings.command_period", s.command_period, lim::kMinPeriod, lim::kMaxPeriod);
   check_argument(s.command_period <= s.t && detail::is_multiple(s.t, s.command_period),
                  "WalkingSettings.command_period", "a period that divides t evenly",
                  s.command_period);
-  check_between("WalkingSettings.t_feedback", s.t_feedback, lim::kMinPeriod, lim::kMaxPeriod);
-  check_count("WalkingSettings.n_still", s.n_still, 0, lim::kMaxStillHorizons);
-  check_up_to("WalkingSettings.step_height", s.step_height, lim::kMaxPosition, true);
-  check_up_to("WalkingSettings.foot_width", s.foot_width, lim::kMaxPosition, false);
-  check_up_to("WalkingSettings.foot_length", s.foot_length, lim::kMaxPosition, false);
-  check_up_to("WalkingSettings.foot_distance", s.foot_distance, lim::kMaxPosition, false);
-  check_up_to("WalkingSettings.security_margin[0]", s.security_margin[0], lim::kMaxPosition, true);
-  check_up_to("WalkingSettings.security_margin[1]", s.security_margin[1], lim::kMaxPosition, true);
-  check_argument(Scalar(2) * s.security_margin[0] < s.foot_length,
-                 "WalkingSettings.security_margin[0]", "less than half the foot length",
-                 s.security_margin[0], "the shrunk support polygon would be empty");
-  check_argument(Scalar(2) * s.security_margin[1] < s.foot_width,
-                 "WalkingSettings.security_margin[1]", "less than half the foot width",
-                 s.security_margin[1], "the shrunk support polygon would be empty");
-  auto check_polygon = [](const char* where, const auto& vertices) {
-    check_argument(
-        vertices.allFinite() && (vertices.array().abs() <= Scalar(lim::kMaxPosition)).all(), where,
-        "vertices with |coordinate| <= 1e6 m", "NaN, inf or larger");
-    check_convex_polygon(where, vertices);
-  };
-  check_polygon("WalkingSettings.left_foot_convex_hull", s.left_foot_convex_hull);
-  check_polygon("WalkingSettings.right_foot_convex_hull", s.right_foot_convex_hull);
-  check_argument(s.com_x.allFinite() && s.com_y.allFinite() && s.com_q.allFinite(),
-                 "WalkingSettings.com_x/com_y/com_q", "finite values", "NaN or inf");
-  check_position("WalkingSettings.com_x[0]", s.com_x[0]);
-  check_position("WalkingSettings.com_y[0]", s.com_y[0]);
-  check_between("WalkingSettings.com_z", s.com_z, 1e-3, lim::kMaxPosition);
-  check_position("WalkingSettings.foot_x", s.foot_x);
-  check_position("WalkingSettings.foot_y", s.foot_y);
-  check_argument(std::isfinite(s.foot_q), "WalkingSettings.foot_q", "a finite yaw", s.foot_q);
-  check_between("WalkingSettings.gravity", s.gravity, 1e-2, 1e3);
-  check_up_to("WalkingSettings.cpu_time", s.cpu_time, lim::kMaxPeriod, true);
-  check_up_to("WalkingSettings.alpha", s.alpha, lim::kMaxWeight, true);
-  check_up_to("WalkingSettings.beta", s.beta, lim::kMaxWeight, true);
-  check_up_to("WalkingSettings.step_velocity_weight", s.step_velocity_weight, lim::kMaxWeight,
-              true);
-  check_up_to("WalkingSettings.gamma", s.gamma, lim::kMaxWeight, false);
+  C::between("WalkingSettings.t_feedback", s.t_feedback, lim::kMinPeriod, lim::kMaxPeriod);
+  C::count("WalkingSettings.n_still", s.n_still, 0, lim::kMaxStillHorizons);
+  C::up_to("WalkingSettings.cpu_time", s.cpu_time, lim::kMaxPeriod, true);
+  C::up_to("WalkingSettings.alpha", s.alpha, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.beta", s.beta, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.step_velocity_weight", s.step_velocity_weight, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.gamma", s.gamma, lim::kMaxWeight, false);
   check_argument(s.gamma >= Scalar(lim::kMinGamma), "WalkingSettings.gamma",
                  "a jerk weight >= 1e-12 (it keeps the QP strictly convex)", s.gamma);
-  check_count("WalkingSettings.nwsr", s.nwsr, 1, lim::kMaxActiveSetChanges);
-  check_up_to("WalkingSettings.max_relative_yaw", s.max_relative_yaw, 1e3, false);
-  check_up_to("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate, 1e3, false);
-  check_count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::kMaxSqpIterations);
-  check_count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::kMaxSqpIterations);
-  check_between("WalkingSettings.sqp_tolerance", s.sqp_tolerance, 1e-9, lim::kMaxPosition);
+  C::count("WalkingSettings.nwsr", s.nwsr, 1, lim::kMaxActiveSetChanges);
+  C::count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::kMaxSqpIterations);
+  C::count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::kMaxSqpIterations);
+  C::between("WalkingSettings.sqp_tolerance", s.sqp_tolerance, 1e-9, lim::kMaxPosition);
   check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all() &&
                      (s.max_command.array() <= Scalar(1e3)).all(),
                  "WalkingSettings.max_command", "finite limits in [0, 1e3]",
                  "NaN, inf, negative or larger");
-  check_up_to("WalkingSettings.footstep_regularization", s.footstep_regularization, lim::kMaxWeight,
-              true);
-  check_up_to("WalkingSettings.max_state_distance", s.max_state_distance, lim::kMaxPosition, false);
-  check_up_to("WalkingSettings.max_com_speed", s.max_com_speed, 1e3, false);
-  check_up_to("WalkingSettings.max_com_acceleration", s.max_com_acceleration, 1e4, false);
+  C::up_to("WalkingSettings.footstep_regularization", s.footstep_regularization, lim::kMaxWeight,
+           true);
+  C::up_to("WalkingSettings.max_state_distance", s.max_state_distance, lim::kMaxPosition, false);
+  C::up_to("WalkingSettings.max_com_speed", s.max_com_speed, 1e3, false);
+  C::up_to("WalkingSettings.max_com_acceleration", s.max_com_acceleration, 1e4, false);
+}
+
+/// Checks an initial state on its own (finite, within the position limits).
+/// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
+template <typename Scalar>
+void validate(const InitialState<Scalar>& s) {
+  using C = detail::SettingsChecks<Scalar>;
+  check_argument(s.com_x.allFinite() && s.com_y.allFinite() && s.com_q.allFinite(),
+                 "WalkingSettings.com_x/com_y/com_q", "finite values", "NaN or inf");
+  C::position("WalkingSettings.com_x[0]", s.com_x[0]);
+  C::position("WalkingSettings.com_y[0]", s.com_y[0]);
+  C::position("WalkingSettings.foot_x", s.foot_x);
+  C::position("WalkingSettings.foot_y", s.foot_y);
+  check_argument(std::isfinite(s.foot_q), "WalkingSettings.foot_q", "a finite yaw", s.foot_q);
+}
+
+/// Checks a settings set before a generator is built from it: each part, then what ties them
+/// together (the initial state within the generator's plausibility limits) and the obstacles.
+/// @throws walkgen::invalid_argument naming the first offending key, with expected and got.
+template <typename Scalar>
+void validate(const WalkingSettings<Scalar>& s) {
+  using C = detail::SettingsChecks<Scalar>;
+  validate(s.generator());
+  validate(s.geometry());
+  validate(s.initial_state());
   check_argument(std::hypot(s.com_x[0] - s.foot_x, s.com_y[0] - s.foot_y) <= s.max_state_distance &&
                      std::abs(s.com_x[1]) <= s.max_com_speed &&
                      std::abs(s.com_y[1]) <= s.max_com_speed &&
@@ -343,12 +421,11 @@ void validate(const WalkingSettings<Scalar>& s) {
                  "an initial CoM within max_state_distance of "
                  "(foot_x, foot_y), max_com_speed and max_com_acceleration",
                  "an implausible initial state");
-  if (s.zmp_polygon.rows() > 0) check_polygon("WalkingSettings.zmp_polygon", s.zmp_polygon);
   for (const auto& o : s.obstacles) {
-    check_position("WalkingSettings.obstacles[].x", o.x);
-    check_position("WalkingSettings.obstacles[].y", o.y);
-    check_up_to("WalkingSettings.obstacles[].radius", o.radius, lim::kMaxPosition, false);
-    check_up_to("WalkingSettings.obstacles[].margin", o.margin, lim::kMaxPosition, true);
+    C::position("WalkingSettings.obstacles[].x", o.x);
+    C::position("WalkingSettings.obstacles[].y", o.y);
+    C::up_to("WalkingSettings.obstacles[].radius", o.radius, settings_limits::kMaxPosition, false);
+    C::up_to("WalkingSettings.obstacles[].margin", o.margin, settings_limits::kMaxPosition, true);
   }
 }
 

@@ -34,6 +34,7 @@
 #include "walkgen/core/math.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
 #include "walkgen/robot/robot.hpp"
+#include "walkgen/robot/robot_description.hpp"
 
 namespace walkgen {
 
@@ -73,24 +74,22 @@ struct SceneObject {
   bool movable = false;
 };
 
-/// How a MujocoRobot maps our names onto the model. The defaults describe walkgen's humanoid.
+/// How a MujocoRobot maps our names onto the model. The defaults describe walkgen's humanoid
+/// (walkgen_humanoid_description()); mujoco_robot_settings() takes them from any description.
 struct MujocoRobotSettings {
   /// MJCF file; empty: humanoid_mjcf_path().
   std::string model_path;
   /// Our joints, in command/measurement order; each needs a MuJoCo joint of that name, a
   /// position actuator of that name on it and a jointpos sensor "<name>_pos".
-  std::vector<std::string> joint_names = {
-      "l_hip_pitch",   "l_hip_roll",   "l_hip_yaw",   "l_knee",     "l_ankle_pitch",
-      "l_ankle_roll",  "r_hip_pitch",  "r_hip_roll",  "r_hip_yaw",  "r_knee",
-      "r_ankle_pitch", "r_ankle_roll", "torso_pitch", "torso_roll", "torso_yaw"};
+  std::vector<std::string> joint_names = walkgen_humanoid_description().joint_names;
   /// Ankle sensor sites (left, right) with force/torque sensors "<site>_force", "<site>_torque".
-  std::array<std::string, 2> ft_sensor_sites = {{"l_foot_ft_sensor", "r_foot_ft_sensor"}};
+  std::array<std::string, 2> ft_sensor_sites = walkgen_humanoid_description().ft_sensor_frames;
   /// Chest cameras (left, right).
-  std::array<std::string, 2> cameras = {{"left_camera", "right_camera"}};
+  std::array<std::string, 2> cameras = walkgen_humanoid_description().cameras;
   /// The floating base, whose height tells a fall.
-  std::string base_body = "root_link";
+  std::string base_body = walkgen_humanoid_description().base_body;
   /// Initial state (qpos, ctrl); empty: the model's qpos0 with zero targets.
-  std::string keyframe = "stand";
+  std::string keyframe = walkgen_humanoid_description().stand_keyframe;
   /// Fallen when the base is below this fraction of its initial height.
   double fall_height_ratio = 0.8;
   /// Static objects added to the world of the model (the model file itself is not changed).
@@ -126,6 +125,19 @@ inline void validate(const MujocoRobotSettings& s) {
     check_argument((o.rgb.array() >= 0.0).all() && (o.rgb.array() <= 1.0).all(),
                    (where + " rgb").c_str(), "values in [0, 1]", "out of range");
   }
+}
+
+/// The settings that load `robot`'s MJCF with its names (joints, ankle sensor sites, cameras,
+/// base, standing keyframe); the rest at their defaults.
+inline MujocoRobotSettings mujoco_robot_settings(const RobotDescription& robot) {
+  MujocoRobotSettings s;
+  s.model_path = robot.mjcf_path;
+  s.joint_names = robot.joint_names;
+  s.ft_sensor_sites = robot.ft_sensor_frames;
+  s.cameras = robot.cameras;
+  s.base_body = robot.base_body;
+  s.keyframe = robot.stand_keyframe;
+  return s;
 }
 
 /// A simulated robot in MuJoCo. Not copyable (owns the model, data and GL context).

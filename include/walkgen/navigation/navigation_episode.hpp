@@ -165,11 +165,12 @@ inline NavigationResult run_navigation_episode(const NavigationScene& scene,
   validate(options);
   NavigationResult result;
   static const KinematicTree<double> tree = humanoid_tree();
-  MujocoRobotSettings robot_settings;
+  const RobotDescription humanoid = walkgen_humanoid_description();
+  MujocoRobotSettings robot_settings = mujoco_robot_settings(humanoid);
   robot_settings.objects = scene.objects();
   MujocoRobot robot(robot_settings);
   HumanoidIk ik(tree);
-  WalkingSettings<double> settings = heicub_settings();
+  WalkingSettings<double> settings = humanoid.walking;
   settings.obstacles = scene.obstacles_at(0.0, 0.12);  // capacity for chairs and the person
   SimLoop loop(settings, robot, ik);
   const std::vector<int> forbidden = detail::obstacle_geoms(robot);

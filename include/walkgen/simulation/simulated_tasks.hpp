@@ -152,16 +152,17 @@ struct TaskResult {
 
 /// The humanoid in MuJoCo with the objects of `task`.
 inline MujocoRobotSettings task_robot_settings(const SimTask& task) {
-  MujocoRobotSettings s;
+  MujocoRobotSettings s = mujoco_robot_settings(walkgen_humanoid_description());
   s.objects = task_objects(task);
   s.view_width = 960;  // walking_simulation --video films at up to 960 x 540
   s.view_height = 540;
   return s;
 }
 
-/// Heicub's settings with the task's obstacles.
+/// The humanoid's walking settings (Heicub's, walkgen_humanoid_description().walking) with the
+/// task's obstacles.
 inline WalkingSettings<double> task_walking_settings(const SimTask& task) {
-  WalkingSettings<double> s = heicub_settings();
+  WalkingSettings<double> s = walkgen_humanoid_description().walking;
   s.obstacles = task.obstacles;
   return s;
 }

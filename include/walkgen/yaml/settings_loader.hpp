@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// YAML adapter for the walking settings (docs/design.md conventions 10-12): reads the thesis's
-/// configuration files (Table 6.1) into a WalkingSettings. Target walkgen::yaml (yaml-cpp);
-/// the core never includes this header.
+/// configuration files (Table 6.1) into a WalkingSettings, mapping each flat key onto its part
+/// (RobotGeometry, GeneratorSettings or InitialState; the table yaml_fields() below). Target
+/// walkgen::yaml (yaml-cpp); the core never includes this header.
 ///
 /// Accepted keys, at the top level or one level down under any section map
 /// (`optimization: {n: 16, t: 0.1}`):
@@ -233,29 +234,29 @@ const std::vector<YamlField<Scalar>>& yaml_fields() {
   using T = YamlTarget<Scalar>&;
   static const std::vector<YamlField<Scalar>> fields = {
       // Specifications.
-      {"t_step", [](V v, T t) { v.read(t.s.t_step); }},
-      {"security_margin", [](V v, T t) { v.read(t.s.security_margin); }},
-      {"left_foot_convex_hull", [](V v, T t) { v.read(t.s.left_foot_convex_hull); }},
-      {"right_foot_convex_hull", [](V v, T t) { v.read(t.s.right_foot_convex_hull); }},
-      {"foot_width", [](V v, T t) { v.read(t.s.foot_width); }},
-      {"foot_length", [](V v, T t) { v.read(t.s.foot_length); }},
-      {"foot_distance", [](V v, T t) { v.read(t.s.foot_distance); }},
+      {"t_step", [](V v, T t) { v.read(t.s.generator().t_step); }},
+      {"security_margin", [](V v, T t) { v.read(t.s.geometry().security_margin); }},
+      {"left_foot_convex_hull", [](V v, T t) { v.read(t.s.geometry().left_foot_convex_hull); }},
+      {"right_foot_convex_hull", [](V v, T t) { v.read(t.s.geometry().right_foot_convex_hull); }},
+      {"foot_width", [](V v, T t) { v.read(t.s.geometry().foot_width); }},
+      {"foot_length", [](V v, T t) { v.read(t.s.geometry().foot_length); }},
+      {"foot_distance", [](V v, T t) { v.read(t.s.geometry().foot_distance); }},
       // Interpolation.
-      {"command_period", [](V v, T t) { v.read(t.s.command_period); }},
-      {"n_still", [](V v, T t) { v.read(t.s.n_still); }},
-      {"t_ds", [](V v, T t) { v.read(t.s.t_ds); }},
-      {"step_height", [](V v, T t) { v.read(t.s.step_height); }},
+      {"command_period", [](V v, T t) { v.read(t.s.generator().command_period); }},
+      {"n_still", [](V v, T t) { v.read(t.s.generator().n_still); }},
+      {"t_ds", [](V v, T t) { v.read(t.s.generator().t_ds); }},
+      {"step_height", [](V v, T t) { v.read(t.s.geometry().step_height); }},
       // Initial values.
-      {"com_x", [](V v, T t) { v.read(t.s.com_x); }},
-      {"com_y", [](V v, T t) { v.read(t.s.com_y); }},
-      {"com_z", [](V v, T t) { v.read(t.s.com_z); }},
-      {"com_q", [](V v, T t) { v.read(t.s.com_q); }},
-      {"support_foot", [](V v, T t) { v.read(t.s.support_foot); }},
-      {"foot_x", [](V v, T t) { v.read(t.s.foot_x); }},
-      {"foot_y", [](V v, T t) { v.read(t.s.foot_y); }},
-      {"foot_q", [](V v, T t) { v.read(t.s.foot_q); }},
+      {"com_x", [](V v, T t) { v.read(t.s.initial_state().com_x); }},
+      {"com_y", [](V v, T t) { v.read(t.s.initial_state().com_y); }},
+      {"com_z", [](V v, T t) { v.read(t.s.geometry().com_z); }},
+      {"com_q", [](V v, T t) { v.read(t.s.initial_state().com_q); }},
+      {"support_foot", [](V v, T t) { v.read(t.s.initial_state().support_foot); }},
+      {"foot_x", [](V v, T t) { v.read(t.s.initial_state().foot_x); }},
+      {"foot_y", [](V v, T t) { v.read(t.s.initial_state().foot_y); }},
+      {"foot_q", [](V v, T t) { v.read(t.s.initial_state().foot_q); }},
       // Environment.
-      {"gravity", [](V v, T t) { v.read(t.s.gravity); }},
+      {"gravity", [](V v, T t) { v.read(t.s.geometry().gravity); }},
       // Obstacle (Table 6.1) and walkgen's obstacle list.
       {"obstacle",
        [](V v, T t) {
@@ -269,26 +270,27 @@ const std::vector<YamlField<Scalar>>& yaml_fields() {
       {"margin", [](V v, T t) { t.read_obstacle_key(v, "margin"); }},
       {"obstacles", [](V v, T t) { t.read_obstacles(v); }},
       // Optimization.
-      {"n", [](V v, T t) { v.read(t.s.n); }},
-      {"t", [](V v, T t) { v.read(t.s.t); }},
-      {"t_feedback", [](V v, T t) { v.read(t.s.t_feedback); }},
-      {"alpha", [](V v, T t) { v.read(t.s.alpha); }},
-      {"beta", [](V v, T t) { v.read(t.s.beta); }},
-      {"gamma", [](V v, T t) { v.read(t.s.gamma); }},
-      {"cpu_time", [](V v, T t) { v.read(t.s.cpu_time); }},
-      {"nwsr", [](V v, T t) { v.read(t.s.nwsr); }},
+      {"n", [](V v, T t) { v.read(t.s.generator().n); }},
+      {"t", [](V v, T t) { v.read(t.s.generator().t); }},
+      {"t_feedback", [](V v, T t) { v.read(t.s.generator().t_feedback); }},
+      {"alpha", [](V v, T t) { v.read(t.s.generator().alpha); }},
+      {"beta", [](V v, T t) { v.read(t.s.generator().beta); }},
+      {"gamma", [](V v, T t) { v.read(t.s.generator().gamma); }},
+      {"cpu_time", [](V v, T t) { v.read(t.s.generator().cpu_time); }},
+      {"nwsr", [](V v, T t) { v.read(t.s.generator().nwsr); }},
       // walkgen's own.
-      {"max_relative_yaw", [](V v, T t) { v.read(t.s.max_relative_yaw); }},
-      {"max_relative_yaw_rate", [](V v, T t) { v.read(t.s.max_relative_yaw_rate); }},
-      {"sqp_iterations", [](V v, T t) { v.read(t.s.sqp_iterations); }},
-      {"sqp_corrections", [](V v, T t) { v.read(t.s.sqp_corrections); }},
-      {"sqp_tolerance", [](V v, T t) { v.read(t.s.sqp_tolerance); }},
-      {"step_velocity_weight", [](V v, T t) { v.read(t.s.step_velocity_weight); }},
-      {"max_command", [](V v, T t) { v.read(t.s.max_command); }},
-      {"footstep_regularization", [](V v, T t) { v.read(t.s.footstep_regularization); }},
-      {"max_state_distance", [](V v, T t) { v.read(t.s.max_state_distance); }},
-      {"max_com_speed", [](V v, T t) { v.read(t.s.max_com_speed); }},
-      {"max_com_acceleration", [](V v, T t) { v.read(t.s.max_com_acceleration); }},
+      {"max_relative_yaw", [](V v, T t) { v.read(t.s.geometry().max_relative_yaw); }},
+      {"max_relative_yaw_rate", [](V v, T t) { v.read(t.s.geometry().max_relative_yaw_rate); }},
+      {"sqp_iterations", [](V v, T t) { v.read(t.s.generator().sqp_iterations); }},
+      {"sqp_corrections", [](V v, T t) { v.read(t.s.generator().sqp_corrections); }},
+      {"sqp_tolerance", [](V v, T t) { v.read(t.s.generator().sqp_tolerance); }},
+      {"step_velocity_weight", [](V v, T t) { v.read(t.s.generator().step_velocity_weight); }},
+      {"max_command", [](V v, T t) { v.read(t.s.generator().max_command); }},
+      {"footstep_regularization",
+       [](V v, T t) { v.read(t.s.generator().footstep_regularization); }},
+      {"max_state_distance", [](V v, T t) { v.read(t.s.generator().max_state_distance); }},
+      {"max_com_speed", [](V v, T t) { v.read(t.s.generator().max_com_speed); }},
+      {"max_com_acceleration", [](V v, T t) { v.read(t.s.generator().max_com_acceleration); }},
   };
   return fields;
 }

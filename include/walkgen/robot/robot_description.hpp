@@ -1,0 +1,130 @@
+#pragma once
+/// @file
+/// A robot's identity in one value: where its models are, the names of its joints, soles,
+/// sensors, cameras and base, its standing posture and its walking settings (whose
+/// RobotGeometry holds the foot geometry). The MuJoCo backend, the closed loop and the IK take
+/// their names and posture from it, so that no other header spells a robot's name.
+///
+/// walkgen_humanoid_description() is walkgen's own humanoid, the robot that models/generate.py
+/// writes; tests/mujoco/test_robot_description.cpp checks every entry against the two model
+/// files that script generates. Eigen only (no MuJoCo, no URDF parser).
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "walkgen/core/data_dir.hpp"
+#include "walkgen/core/exceptions.hpp"
+#include "walkgen/mpc/settings.hpp"
+
+namespace walkgen {
+
+/// One joint angle of a posture.
+struct JointAngle {
+  std::string joint;   ///< joint name, one of RobotDescription::joint_names
+  double angle = 0.0;  ///< [rad]
+};
+
+/// Everything that names or sizes one robot. Left before right in every pair.
+struct RobotDescription {
+  std::string name;       ///< e.g. "walkgen_humanoid"
+  std::string urdf_path;  ///< kinematics and inertias (KinematicTree)
+  std::string mjcf_path;  ///< the simulated robot (MujocoRobot)
+  /// Actuated joints in command and measurement order (URDF joints, MuJoCo joints and
+  /// actuators of these names).
+  std::vector<std::string> joint_names;
+  /// Sole frames: URDF links and MJCF sites at the sole centre, z up, where the IK puts the feet.
+  std::array<std::string, 2> sole_frames;
+  /// Ankle force-torque sensor frames: URDF links and MJCF sites (sensors "<site>_force",
+  /// "<site>_torque"), `ft_sensor_height` above the sole.
+  std::array<std::string, 2> ft_sensor_frames;
+  double ft_sensor_height = 0.0;       ///< [m] d of eq. 2.11-2.12
+  std::array<std::string, 2> cameras;  ///< MJCF cameras of the stereo pair
+  std::string base_body;               ///< the floating base (URDF root link, MJCF body)
+  std::string stand_keyframe;          ///< MJCF keyframe holding the standing posture
+  /// The standing posture: these joints at these angles, every other joint at 0.
+  std::vector<JointAngle> stand_pose;
+  /// The walking settings the robot walks with: foot size and distance, feasibility regions and
+  /// CoM height (geometry()), timing and weights (generator()), the start (initial_state()).
+  WalkingSettings<double> walking;
+};
+
+/// Checks a description on its own (the names are looked up in the models by their users).
+/// @throws walkgen::invalid_argument naming the first bad entry.
+inline void validate(const RobotDescription& d) {
+  check_argument(!d.name.empty(), "RobotDescription.name", "a name", "an empty string");
+  check_argument(!d.joint_names.empty(), "RobotDescription.joint_names", "at least one joint",
+                 "none");
+  for (std::size_t i = 0; i < d.joint_names.size(); ++i) {
+    check_argument(!d.joint_names[i].empty(), "RobotDescription.joint_names", "non-empty names",
+                   "an empty name at index " + std::to_string(i));
+    for (std::size_t j = 0; j < i; ++j) {
+      check_argument(d.joint_names[j] != d.joint_names[i], "RobotDescription.joint_names",
+                     "each joint once", "'" + d.joint_names[i] + "' twice");
+    }
+  }
+  const std::array<std::pair<const char*, const std::array<std::string, 2>*>, 3> pairs = {
+      {{"RobotDescription.sole_frames", &d.sole_frames},
+       {"RobotDescription.ft_sensor_frames", &d.ft_sensor_frames},
+       {"RobotDescription.cameras", &d.cameras}}};
+  for (const auto& p : pairs) {
+    check_argument(
+        !(*p.second)[0].empty() && !(*p.second)[1].empty() && (*p.second)[0] != (*p.second)[1],
+        p.first, "two different names (left, right)",
+        "'" + (*p.second)[0] + "', '" + (*p.second)[1] + "'");
+  }
+  check_argument(!d.base_body.empty(), "RobotDescription.base_body", "a body name",
+                 "an empty string");
+  check_positive("RobotDescription.ft_sensor_height", d.ft_sensor_height);
+  for (const JointAngle& a : d.stand_pose) {
+    bool known = false;
+    for (const std::string& j : d.joint_names) known = known || j == a.joint;
+    check_argument(known, "RobotDescription.stand_pose", "joints of joint_names",
+                   "'" + a.joint + "'");
+    check_argument(std::isfinite(a.angle), "RobotDescription.stand_pose", "finite angles", a.angle);
+  }
+  validate(d.walking);
+}
+
+/// The standing posture as a vector over `joint_names` (the order of the description, not of a
+/// model; see stand_configuration() in walkgen/humanoid/humanoid_ik.hpp for a tree's order).
+inline std::vector<double> stand_angles(const RobotDescription& d) {
+  std::vector<double> q(d.joint_names.size(), 0.0);
+  for (const JointAngle& a : d.stand_pose) {
+    for (std::size_t i = 0; i < d.joint_names.size(); ++i) {
+      if (d.joint_names[i] == a.joint) q[i] = a.angle;
+    }
+  }
+  return q;
+}
+
+/// walkgen's humanoid (models/generate.py: 15 joints, Heicub-like, position servos), walking
+/// with Heicub's settings (thesis Table 6.1): its 0.2 × 0.1 m soles 0.14 m apart are Heicub's.
+/// The model paths are under data_dir() (empty when walkgen's CMake target did not say where).
+inline RobotDescription walkgen_humanoid_description() {
+  RobotDescription d;
+  d.name = "walkgen_humanoid";
+  d.urdf_path = humanoid_urdf_path();
+  d.mjcf_path = humanoid_mjcf_path();
+  d.joint_names = {"l_hip_pitch",   "l_hip_roll",   "l_hip_yaw",   "l_knee",     "l_ankle_pitch",
+                   "l_ankle_roll",  "r_hip_pitch",  "r_hip_roll",  "r_hip_yaw",  "r_knee",
+                   "r_ankle_pitch", "r_ankle_roll", "torso_pitch", "torso_roll", "torso_yaw"};
+  d.sole_frames = {{"l_sole", "r_sole"}};
+  d.ft_sensor_frames = {{"l_foot_ft_sensor", "r_foot_ft_sensor"}};
+  d.ft_sensor_height = 0.03;
+  d.cameras = {{"left_camera", "right_camera"}};
+  d.base_body = "root_link";
+  d.stand_keyframe = "stand";
+  for (const char* side : {"l_", "r_"}) {
+    const std::string s(side);
+    d.stand_pose.push_back({s + "hip_pitch", -0.5});
+    d.stand_pose.push_back({s + "knee", 1.0});
+    d.stand_pose.push_back({s + "ankle_pitch", -0.5});
+  }
+  d.walking = heicub_settings<double>();
+  return d;
+}
+
+}  // namespace walkgen
