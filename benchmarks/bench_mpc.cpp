@@ -39,7 +39,7 @@ void BM_Tick(benchmark::State& state, const char* scenario) {
   auto s = settings(N);
   s.obstacles = sc.obstacles;
   walkgen::WalkingMpc<double, N> mpc(s);
-  long changes = 0, ticks = 0;
+  long changes = 0, ticks = 0, active = 0;
   for (auto _ : state) {
     if (mpc.set_command(sc.command(int(ticks % 200))) != walkgen::CommandStatus::accepted) {
       state.SkipWithError("command rejected");
@@ -51,10 +51,12 @@ void BM_Tick(benchmark::State& state, const char* scenario) {
       break;
     }
     changes += r.qp_iterations;
+    active += mpc.workspace().qp.result().active_set_size;
     mpc.advance();
     ++ticks;
   }
   state.counters["qp_changes"] = double(changes) / double(ticks);
+  state.counters["active"] = double(active) / double(ticks);
   state.counters["vars"] = double(mpc.num_vars());
   state.counters["rows"] = double(mpc.num_rows());
 }
