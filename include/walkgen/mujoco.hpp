@@ -5,5 +5,6 @@
 /// rooms (docs/simulation.md). Includes this adapter's public headers and the core they need,
 /// never another adapter; the core umbrella walkgen/walkgen.hpp never includes it.
 
+#include "walkgen/mujoco/mujoco_kinematics.hpp"
 #include "walkgen/mujoco/mujoco_robot.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"

@@ -14,6 +14,7 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
+#include "support/expect_error.hpp"
 #include "support/kinematics.hpp"
 
 namespace {
@@ -80,6 +81,31 @@ TEST(KinematicTree, OriginRpyIsUrdfConvention) {
   };
   const Eigen::Matrix3d expected = rot(1.1, 2) * rot(-0.5, 1) * rot(0.3, 0);  // Rz Ry Rx
   EXPECT_LT((ws.rotation_W(tree.link_index("b")) - expected).norm(), 1e-15);
+}
+
+// An origin given as a rotation matrix (an MJCF quaternion) replaces rpy, also at the gimbal
+// lock; a matrix that is not a rotation is refused.
+TEST(KinematicTree, OriginRotationReplacesRpy) {
+  KinematicDescription d;
+  d.links = {make_link("a", 1.0), make_link("b")};
+  d.joints = {make_joint("j", JointType::revolute, "a", "b", {1.0, 2.0, 3.0})};
+  d.joints[0].rpy << 0.3, -0.5, 1.1;  // ignored
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(walkgen::kPi / 2.0, Eigen::Vector3d::UnitY()).toRotationMatrix() *
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  d.joints[0].rotation = R;
+  const Tree tree(d);
+  auto ws = tree.make_workspace();
+  Eigen::VectorXd q(1);
+  q << 0.7;
+  tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q, ws);
+  const Eigen::Matrix3d expected = R * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ());
+  EXPECT_LT((ws.rotation_W(tree.link_index("b")) - expected).norm(), 1e-15);
+  d.joints[0].rotation = 2.0 * R;
+  walkgen_test::expect_invalid_argument([&] { Tree bad(d); },
+                                        {"joint 'j'", "orthonormal with determinant +1"});
+  d.joints[0].rotation = -R;  // a reflection
+  walkgen_test::expect_invalid_argument([&] { Tree bad(d); }, {"determinant +1"});
 }
 
 TEST(KinematicTree, LinksParentsFirstAndQInDescriptionOrder) {

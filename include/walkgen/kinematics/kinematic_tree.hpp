@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -71,7 +72,8 @@ struct LinkDescription {
 };
 
 /// One joint: places `child`'s frame in `parent`'s frame, at angle q for a revolute joint:
-/// T_parent_child(q) = Trans(xyz) · Rot(rpy) · Rot(axis, q).
+/// T_parent_child(q) = Trans(xyz) · Rot(rpy) · Rot(axis, q) (`rotation` in place of Rot(rpy)
+/// when given).
 struct JointDescription {
   std::string name;
   JointType type = JointType::fixed;
@@ -83,6 +85,9 @@ struct JointDescription {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();          ///< in the joint frame, any length > 0
   double lower = -std::numeric_limits<double>::infinity();  ///< position limit [rad]
   double upper = std::numeric_limits<double>::infinity();   ///< position limit [rad]
+  /// The origin's rotation when given, instead of Rot(rpy): exact at any orientation, where
+  /// rpy loses digits near pitch ±π/2 (e.g. an MJCF body's quaternion). Orthonormal, det +1.
+  std::optional<Eigen::Matrix3d> rotation = std::nullopt;
 };
 
 /// A robot as plain data: links and the joints connecting them into one tree.
@@ -174,6 +179,14 @@ inline std::vector<OrderedLink> ordered_links(const KinematicDescription& d) {
     check_argument(jd.xyz.allFinite() && jd.rpy.allFinite(), at.c_str(),
                    "a finite origin xyz and rpy",
                    vector_text(jd.xyz) + " and " + vector_text(jd.rpy));
+    if (jd.rotation) {
+      const Eigen::Matrix3d& R = *jd.rotation;
+      check_argument(R.allFinite() &&
+                         (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() <= 1e-9 &&
+                         R.determinant() > 0.0,
+                     at.c_str(), "an origin rotation that is orthonormal with determinant +1",
+                     "a matrix that is not");
+    }
     if (jd.type == JointType::revolute) {
       // The norm of (1e200, 0, 0) overflows and normalises to zero: bound it (issue 21).
       const double length = jd.axis.allFinite() ? jd.axis.norm() : 0.0;
@@ -309,7 +322,8 @@ class KinematicTree {
         const JointDescription& jd = description_.joints[std::size_t(o.joint)];
         l.joint_name = jd.name;
         l.joint_type = jd.type;
-        l.origin_R = detail::rotation_from_rpy(jd.rpy).cast<Scalar>();
+        l.origin_R = (jd.rotation ? *jd.rotation : detail::rotation_from_rpy(jd.rpy))
+                         .template cast<Scalar>();
         l.origin_p = jd.xyz.cast<Scalar>();
         if (jd.type == JointType::revolute) {
           l.axis = jd.axis.normalized().cast<Scalar>();
