@@ -8,3 +8,4 @@
 #include "walkgen/mujoco/mujoco_kinematics.hpp"
 #include "walkgen/mujoco/mujoco_robot.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
+#include "walkgen/mujoco/robot_model.hpp"

@@ -5,4 +5,5 @@
 /// (docs/yaml.md). Includes this adapter's public headers and the core they need, never another
 /// adapter; the core umbrella walkgen/walkgen.hpp never includes it.
 
+#include "walkgen/yaml/robot_description_loader.hpp"
 #include "walkgen/yaml/settings_loader.hpp"

@@ -46,6 +46,22 @@ inline std::string mj_name(const mjModel& m, mjtObj type, int id, const char* fa
                                           : std::string(fallback) + std::to_string(id);
 }
 
+/// A model MuJoCo loaded, deleted with it.
+struct LoadedModel {
+  std::unique_ptr<mjModel, void (*)(mjModel*)> m{nullptr, mj_deleteModel};
+};
+
+/// Loads an MJCF file. @throws walkgen::invalid_argument "<where>: '<path>': expected an MJCF
+/// file MuJoCo loads, got <MuJoCo's message>".
+inline LoadedModel load_mjcf(const std::string& path, const char* where) {
+  LoadedModel l;
+  char error[1000] = "";
+  l.m.reset(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
+  check_argument(l.m != nullptr, (std::string(where) + ": '" + path + "'").c_str(),
+                 "an MJCF file MuJoCo loads", std::string(error));
+  return l;
+}
+
 }  // namespace detail
 
 /// The kinematic description of the subtree of `base_body` (empty: the one body below the world
@@ -182,12 +198,8 @@ inline KinematicDescription kinematic_description_from_mujoco(const mjModel& m,
 template <typename Scalar = double>
 [[nodiscard]] KinematicTree<Scalar> kinematic_tree_from_mjcf_file(
     const std::string& path, const std::string& base_body = "") {
-  char error[1000] = "";
-  std::unique_ptr<mjModel, void (*)(mjModel*)> m(
-      mj_loadXML(path.c_str(), nullptr, error, sizeof error), mj_deleteModel);
-  check_argument(m != nullptr, ("kinematic_tree_from_mjcf_file: '" + path + "'").c_str(),
-                 "an MJCF file MuJoCo loads", std::string(error));
-  return KinematicTree<Scalar>(kinematic_description_from_mujoco(*m, base_body));
+  const detail::LoadedModel l = detail::load_mjcf(path, "kinematic_tree_from_mjcf_file");
+  return KinematicTree<Scalar>(kinematic_description_from_mujoco(*l.m, base_body));
 }
 
 }  // namespace walkgen

@@ -9,6 +9,8 @@
 /// writes; tests/mujoco/test_robot_description.cpp checks every entry against the two model
 /// files that script generates. Eigen only (no MuJoCo, no URDF parser).
 
+#include <Eigen/Core>
+
 #include <array>
 #include <cmath>
 #include <string>
@@ -27,7 +29,16 @@ struct JointAngle {
   double angle = 0.0;  ///< [rad]
 };
 
-/// Everything that names or sizes one robot. Left before right in every pair.
+/// A frame the description adds to a body of the model (a sole of a model without sites).
+struct FrameDescription {
+  std::string name;                               ///< unique among the model's bodies and sites
+  std::string body;                               ///< the body it is welded to
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();  ///< origin in the body frame [m]
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();  ///< URDF roll, pitch, yaw [rad]
+};
+
+/// Everything that names or sizes one robot. Left before right in every pair; an optional pair
+/// (force-torque sensors, cameras) is two empty names when the robot has none.
 struct RobotDescription {
   std::string name;       ///< e.g. "walkgen_humanoid"
   std::string urdf_path;  ///< kinematics and inertias (KinematicTree)
@@ -35,13 +46,16 @@ struct RobotDescription {
   /// Actuated joints in command and measurement order (URDF joints, MuJoCo joints and
   /// actuators of these names).
   std::vector<std::string> joint_names;
-  /// Sole frames: URDF links and MJCF sites at the sole centre, z up, where the IK puts the feet.
+  /// Sole frames: URDF links, MJCF sites or added `frames` at the sole centre, z up, where the
+  /// IK puts the feet.
   std::array<std::string, 2> sole_frames;
+  /// Frames added to bodies of the model (kinematic trees read from the MJCF get them).
+  std::vector<FrameDescription> frames;
   /// Ankle force-torque sensor frames: URDF links and MJCF sites (sensors "<site>_force",
-  /// "<site>_torque"), `ft_sensor_height` above the sole.
+  /// "<site>_torque"), `ft_sensor_height` above the sole. Optional.
   std::array<std::string, 2> ft_sensor_frames;
   double ft_sensor_height = 0.0;       ///< [m] d of eq. 2.11-2.12
-  std::array<std::string, 2> cameras;  ///< MJCF cameras of the stereo pair
+  std::array<std::string, 2> cameras;  ///< MJCF cameras of the stereo pair. Optional.
   std::string base_body;               ///< the floating base (URDF root link, MJCF body)
   std::string stand_keyframe;          ///< MJCF keyframe holding the standing posture
   /// The standing posture: these joints at these angles, every other joint at 0.
@@ -70,14 +84,32 @@ inline void validate(const RobotDescription& d) {
        {"RobotDescription.ft_sensor_frames", &d.ft_sensor_frames},
        {"RobotDescription.cameras", &d.cameras}}};
   for (const auto& p : pairs) {
+    const std::array<std::string, 2>& names = *p.second;
+    const bool optional = p.second != &d.sole_frames;
+    const bool none = names[0].empty() && names[1].empty();
     check_argument(
-        !(*p.second)[0].empty() && !(*p.second)[1].empty() && (*p.second)[0] != (*p.second)[1],
-        p.first, "two different names (left, right)",
-        "'" + (*p.second)[0] + "', '" + (*p.second)[1] + "'");
+        (optional && none) || (!names[0].empty() && !names[1].empty() && names[0] != names[1]),
+        p.first,
+        optional ? "two different names (left, right) or none"
+                 : "two different names (left, right)",
+        "'" + names[0] + "', '" + names[1] + "'");
   }
   check_argument(!d.base_body.empty(), "RobotDescription.base_body", "a body name",
                  "an empty string");
-  check_positive("RobotDescription.ft_sensor_height", d.ft_sensor_height);
+  if (!d.ft_sensor_frames[0].empty()) {
+    check_positive("RobotDescription.ft_sensor_height", d.ft_sensor_height);
+  }
+  for (std::size_t i = 0; i < d.frames.size(); ++i) {
+    const FrameDescription& f = d.frames[i];
+    check_argument(!f.name.empty() && !f.body.empty(), "RobotDescription.frames",
+                   "a name and a body", "'" + f.name + "' on '" + f.body + "'");
+    check_argument(f.xyz.allFinite() && f.rpy.allFinite(), "RobotDescription.frames",
+                   "a finite xyz and rpy", "'" + f.name + "' with NaN or inf");
+    for (std::size_t j = 0; j < i; ++j) {
+      check_argument(d.frames[j].name != f.name, "RobotDescription.frames", "each name once",
+                     "'" + f.name + "' twice");
+    }
+  }
   for (const JointAngle& a : d.stand_pose) {
     bool known = false;
     for (const std::string& j : d.joint_names) known = known || j == a.joint;
