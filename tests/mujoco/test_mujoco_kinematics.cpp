@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -187,6 +189,70 @@ TEST(MujocoKinematics, SmallBipedWithAnchorsReferencesAndTwoHingesInABody) {
   // Six bodies and two sites; the joint links "l_thigh/l_hip", "l_shank/l_knee" and
   // "l_shank/l_twist" have no MuJoCo frame of their own.
   expect_agreement(path, 8);
+}
+
+// A random robot: up to 12 bodies on random parents, random positions and orientations (some
+// exactly at pitch ±90°, where roll-pitch-yaw would lose digits), 0 to 3 hinges per body with
+// random anchors, axes, reference angles and ranges, random sites.
+std::string random_mjcf(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto vec = [&](double scale) {
+    return std::to_string(scale * u(rng)) + " " + std::to_string(scale * u(rng)) + " " +
+           std::to_string(scale * u(rng));
+  };
+  const auto quat = [&]() -> std::string {
+    if (u(rng) > 0.6) return "0.7071067811865476 0 0.7071067811865476 0";  // pitch 90°
+    return std::to_string(u(rng)) + " " + vec(1.0);
+  };
+  const int bodies = 1 + int((u(rng) + 1.0) * 6.0);
+  std::vector<std::vector<int>> children(static_cast<std::size_t>(bodies));
+  for (int b = 1; b < bodies; ++b) {
+    children[std::size_t(std::uniform_int_distribution<int>(0, b - 1)(rng))].push_back(b);
+  }
+  int joints = 0, sites = 0;
+  std::function<std::string(int)> body = [&](int b) {
+    std::string xml = "<body name=\"b" + std::to_string(b) + "\" pos=\"" + vec(0.3) + "\" quat=\"" +
+                      quat() + "\">";
+    if (b == 0) {
+      xml += "<freejoint/>";
+    } else {
+      const int hinges = std::uniform_int_distribution<int>(0, 3)(rng);
+      for (int j = 0; j < hinges; ++j) {
+        xml += "<joint name=\"j" + std::to_string(joints++) + "\" type=\"hinge\" pos=\"" +
+               vec(0.1) + "\" axis=\"" + vec(1.0) + "\" ref=\"" + std::to_string(u(rng)) + "\"" +
+               (u(rng) > 0.0 ? " range=\"-1 1.5\"" : "") + "/>";
+      }
+    }
+    xml += "<inertial pos=\"" + vec(0.1) + "\" quat=\"" + quat() + "\" mass=\"" +
+           std::to_string(1.5 + u(rng)) + "\" diaginertia=\"0.02 0.03 0.04\"/>";
+    if (u(rng) > 0.3) {
+      xml += "<site name=\"s" + std::to_string(sites++) + "\" pos=\"" + vec(0.2) + "\" quat=\"" +
+             quat() + "\"/>";
+    }
+    for (int c : children[std::size_t(b)]) xml += body(c);
+    return xml + "</body>";
+  };
+  return "<mujoco><compiler angle=\"radian\" autolimits=\"true\"/><worldbody>" + body(0) +
+         "</worldbody></mujoco>";
+}
+
+TEST(MujocoKinematics, RandomRobotsAgreeWithMujoco) {
+  std::mt19937 rng(11);
+  Agreement worst;
+  for (int robot = 0; robot < 100; ++robot) {
+    const std::string path = write_temp("random_robot.xml", random_mjcf(rng));
+    const Agreement a = compare(path, 20);
+    ASSERT_GE(a.frames, 1) << "robot " << robot << " did not load";
+    worst.position = std::max(worst.position, a.position);
+    worst.rotation = std::max(worst.rotation, a.rotation);
+    worst.com = std::max(worst.com, a.com);
+  }
+  EXPECT_LE(worst.position, 1e-9);
+  EXPECT_LE(worst.rotation, 1e-9);
+  EXPECT_LE(worst.com, 1e-9);
+  RecordProperty("max_position_error_m", walkgen_test::scientific(worst.position));
+  RecordProperty("max_rotation_error_rad", walkgen_test::scientific(worst.rotation));
+  RecordProperty("max_com_error_m", walkgen_test::scientific(worst.com));
 }
 
 TEST(MujocoKinematics, ErrorsNameWhatIsWrong) {

@@ -86,8 +86,10 @@ TEST_F(HumanoidDescription, FramesCamerasAndBaseExistInBothModels) {
     EXPECT_GE(id(mjOBJ_SENSOR, robot_.ft_sensor_frames[side] + "_torque"), 0);
     EXPECT_GE(id(mjOBJ_CAMERA, robot_.cameras[side]), 0) << robot_.cameras[side];
   }
-  EXPECT_GE(id(mjOBJ_BODY, robot_.base_body), 0);
-  EXPECT_NO_THROW(tree.link_index(robot_.base_body));
+  for (const std::string& body : {robot_.base_body, robot_.torso_body}) {
+    EXPECT_GE(id(mjOBJ_BODY, body), 0) << body;
+    EXPECT_NO_THROW(tree.link_index(body)) << body;
+  }
   for (const std::string& joint : robot_.joint_names) {
     EXPECT_NO_THROW(tree.joint_index(joint)) << joint;
   }

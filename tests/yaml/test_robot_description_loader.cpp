@@ -38,6 +38,7 @@ TEST(RobotDescriptionFile, HumanoidFileIsTheCodePreset) {
   EXPECT_EQ(file.ft_sensor_height, code.ft_sensor_height);
   EXPECT_EQ(file.cameras, code.cameras);
   EXPECT_EQ(file.base_body, code.base_body);
+  EXPECT_EQ(file.torso_body, code.torso_body);
   EXPECT_EQ(file.stand_keyframe, code.stand_keyframe);
   EXPECT_EQ(walkgen::stand_angles(file), walkgen::stand_angles(code));
   EXPECT_TRUE(file.frames.empty());

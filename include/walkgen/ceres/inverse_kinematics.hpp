@@ -38,6 +38,7 @@
 #include "walkgen/kinematics/ik_residual.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
+#include "walkgen/robot/robot_description.hpp"
 
 namespace walkgen {
 
@@ -104,6 +105,16 @@ inline void validate(const CeresIkSettings& s) {
   validate(static_cast<const IkResidualSettings&>(s));
   check_positive("CeresIkSettings.position_tolerance", s.position_tolerance);
   check_positive("CeresIkSettings.orientation_tolerance", s.orientation_tolerance);
+}
+
+/// The IK settings of `robot`: its sole frames, and its torso body held upright (the base when
+/// it names none); the rest at their defaults.
+inline CeresIkSettings ceres_ik_settings(const RobotDescription& robot) {
+  CeresIkSettings s;
+  s.left_foot_link = robot.sole_frames[0];
+  s.right_foot_link = robot.sole_frames[1];
+  s.torso_link = robot.torso_body.empty() ? robot.base_body : robot.torso_body;
+  return s;
 }
 
 /// Whole-body Levenberg–Marquardt IK over a KinematicTree (see the file comment).

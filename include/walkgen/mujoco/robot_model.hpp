@@ -31,9 +31,9 @@ std::string mj_names(const mjModel& m, mjtObj type, int count, Keep keep) {
 
 }  // namespace detail
 
-/// Checks that every name of `robot` is in `m`: the base body, the joints (hinges), the bodies
-/// of its added frames, the sole frames (sites or added frames), the force-torque sensor sites
-/// with their "<site>_force" / "<site>_torque" sensors, the cameras and the stand keyframe.
+/// Checks that every name of `robot` is in `m`: the base and torso bodies, the joints (hinges), the
+/// bodies of its added frames, the sole frames (sites or added frames), the force-torque sensor
+/// sites with their "<site>_force" / "<site>_torque" sensors, the cameras and the stand keyframe.
 /// @throws walkgen::invalid_argument naming the first missing one and listing the model's.
 inline void check_robot_against_model(const RobotDescription& robot, const mjModel& m) {
   const std::string where = "robot '" + robot.name + "' in " + robot.mjcf_path;
@@ -49,6 +49,10 @@ inline void check_robot_against_model(const RobotDescription& robot, const mjMod
   };
   require(id(mjOBJ_BODY, robot.base_body) > 0, "base_body", robot.base_body, mjOBJ_BODY, m.nbody,
           all);
+  if (!robot.torso_body.empty()) {
+    require(id(mjOBJ_BODY, robot.torso_body) > 0, "torso_body", robot.torso_body, mjOBJ_BODY,
+            m.nbody, all);
+  }
   const auto hinge = [&](int j) { return m.jnt_type[j] == mjJNT_HINGE; };
   for (const std::string& joint : robot.joint_names) {
     const int j = id(mjOBJ_JOINT, joint);

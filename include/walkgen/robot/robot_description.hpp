@@ -57,7 +57,9 @@ struct RobotDescription {
   double ft_sensor_height = 0.0;       ///< [m] d of eq. 2.11-2.12
   std::array<std::string, 2> cameras;  ///< MJCF cameras of the stereo pair. Optional.
   std::string base_body;               ///< the floating base (URDF root link, MJCF body)
-  std::string stand_keyframe;          ///< MJCF keyframe holding the standing posture
+  /// The upper body whose orientation the IK holds upright (empty: the base's only).
+  std::string torso_body;
+  std::string stand_keyframe;  ///< MJCF keyframe holding the standing posture
   /// The standing posture: these joints at these angles, every other joint at 0.
   std::vector<JointAngle> stand_pose;
   /// The walking settings the robot walks with: foot size and distance, feasibility regions and
@@ -148,6 +150,7 @@ inline RobotDescription walkgen_humanoid_description() {
   d.ft_sensor_height = 0.03;
   d.cameras = {{"left_camera", "right_camera"}};
   d.base_body = "root_link";
+  d.torso_body = "chest";
   d.stand_keyframe = "stand";
   for (const char* side : {"l_", "r_"}) {
     const std::string s(side);

@@ -4,7 +4,8 @@
 /// (walkgen/robot/robot_description.hpp): a robot becomes data, not code. Part of walkgen::yaml.
 ///
 /// Keys (docs/robots.md has the reference and an example):
-///   name (required), mjcf (required), urdf, base_body (required): paths relative to the file;
+///   name (required), mjcf (required), urdf: paths relative to the file; base_body (required)
+///   and torso_body (held upright by the IK);
 ///   joints (required): the actuated joints the walking controller commands, in order;
 ///   sole_frames (required), ft_sensor_frames, cameras: [left, right] frame or camera names;
 ///   ft_sensor_height [m] (with ft_sensor_frames); frames: {name: {body, xyz, rpy}} added to
@@ -59,6 +60,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
                                       "mjcf",
                                       "urdf",
                                       "base_body",
+                                      "torso_body",
                                       "joints",
                                       "sole_frames",
                                       "ft_sensor_frames",
@@ -102,6 +104,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
   d.mjcf_path = path_beside(base_dir, text(required("mjcf")));
   if (root["urdf"]) d.urdf_path = path_beside(base_dir, text(value("urdf")));
   d.base_body = text(required("base_body"));
+  if (root["torso_body"]) d.torso_body = text(value("torso_body"));
   {
     const YamlValue joints = required("joints");
     joints.check(joints.node.IsSequence() && joints.node.size() >= 1, "a list of joint names");
