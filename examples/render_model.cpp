@@ -1,16 +1,20 @@
-// A picture of walkgen's humanoid (models/walkgen_humanoid.xml) for the docs: MuJoCo loads the
-// model standing in its keyframe "stand" and renders it offscreen (EGL, as MujocoRobot renders
-// its cameras) from two free cameras, a 3/4 front view and a side view (600 x 800 px each), side
-// by side in one image written through OpenCV (cv::imwrite; built when walkgen::opencv is).
+// A picture of a robot for the docs: MuJoCo loads the model of a robot description file
+// (docs/robots.md), standing in its stand keyframe or, without one, in its stand pose with the
+// soles on the floor, and renders it offscreen (EGL, as MujocoRobot renders its cameras) from two
+// free cameras, a 3/4 front view and a side view (600 x 800 px each), side by side in one image
+// written through OpenCV (cv::imwrite; built when walkgen::opencv is).
 //
-//   render_model [--out FILE]
+//   render_model [--robot NAME|PATH] [--out FILE]
+//     --robot     walkgen_humanoid (default) or unitree_g1, or a robot.yaml
 //     --out FILE  the image; its extension picks the format (default humanoid.png;
-//                 docs/img/humanoid.png is its copy)
+//                 docs/img/humanoid.png and docs/img/unitree_g1.png are its copies)
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option with
 // its default and exits 0; an unknown option or a bad value exits 2 with one line on stderr.
 // Exits 1 when the model cannot be loaded or rendered, or the image cannot be written.
 #include <mujoco/mujoco.h>
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -19,8 +23,9 @@
 #include <vector>
 
 #include "common/cli.hpp"
-#include "walkgen/core/data_dir.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
+#include "walkgen/mujoco/robot_model.hpp"
+#include "walkgen/yaml/robot_description_loader.hpp"
 
 namespace {
 
@@ -30,14 +35,17 @@ constexpr int kHeight = 800;
 /// Renders one view from a free camera looking at `lookat` and pastes it at column x0 of
 /// `out` (8-bit BGR, OpenCV's order). The background (nothing drawn, depth 1) becomes a light
 /// vertical gradient.
+/// The camera looks at 0.9 × the CoM's height from 3.2 × that height (0.4 m and 1.45 m for
+/// walkgen's humanoid), so that any robot fills the view alike.
 void render_view(const mjModel* m, mjData* d, mjvScene& scene, mjrContext& context,
-                 const mjvOption& option, double azimuth, double elevation, cv::Mat& out, int x0) {
+                 const mjvOption& option, const Eigen::Vector3d& com, double azimuth,
+                 double elevation, cv::Mat& out, int x0) {
   mjvCamera camera;
   mjv_defaultFreeCamera(m, &camera);
-  camera.lookat[0] = 0.0;
-  camera.lookat[1] = 0.0;
-  camera.lookat[2] = 0.4;
-  camera.distance = 1.45;
+  camera.lookat[0] = com.x();
+  camera.lookat[1] = com.y();
+  camera.lookat[2] = 0.9 * com.z();
+  camera.distance = 3.2 * com.z();
   camera.azimuth = azimuth;
   camera.elevation = elevation;
   mjv_updateScene(m, d, &option, nullptr, &camera, mjCAT_ALL, &scene);
@@ -63,15 +71,48 @@ void render_view(const mjModel* m, mjData* d, mjvScene& scene, mjrContext& conte
   }
 }
 
+/// Puts `robot` in its stand keyframe, or in its stand pose with the base upright above the
+/// origin and the lower sole on the floor. Returns the whole-body CoM.
+Eigen::Vector3d stand(const walkgen::RobotDescription& robot, const mjModel* m, mjData* d) {
+  const int key =
+      robot.stand_keyframe.empty() ? -1 : mj_name2id(m, mjOBJ_KEY, robot.stand_keyframe.c_str());
+  const int base = mj_name2id(m, mjOBJ_BODY, robot.base_body.c_str());
+  if (key >= 0) {
+    mj_resetDataKeyframe(m, d, key);
+  } else {
+    const walkgen::KinematicTree<double> tree = walkgen::robot_kinematic_tree_from_mjcf(robot);
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
+    for (const auto& a : robot.stand_pose) q[tree.joint_index(a.joint)] = a.angle;
+    auto ws = tree.make_workspace();
+    tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q, ws);
+    const double lowest = std::min(ws.position_W(tree.link_index(robot.sole_frames[0])).z(),
+                                   ws.position_W(tree.link_index(robot.sole_frames[1])).z());
+    mj_resetData(m, d);
+    const int free = m->jnt_qposadr[m->body_jntadr[base]];
+    const double base_pose[7] = {0.0, 0.0, -lowest, 1.0, 0.0, 0.0, 0.0};  // upright
+    std::copy_n(base_pose, 7, d->qpos + free);
+    for (int i = 0; i < tree.num_joints(); ++i) {
+      const std::string& name = tree.joint_names()[std::size_t(i)];
+      d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, name.c_str())]] = q[i];
+    }
+  }
+  mj_forward(m, d);
+  return Eigen::Vector3d::Map(d->subtree_com + 3 * base);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string out_path = "humanoid.png";
+  std::string robot_name = "walkgen_humanoid";
   CLI::App app{
-      "Renders walkgen's humanoid, modelled on Heicub (thesis §5), standing in MuJoCo: a "
-      "3/4 front and a side view for the docs",
+      "Renders a robot standing in MuJoCo (walkgen's humanoid, modelled on Heicub, thesis §5, "
+      "or any robot description file): a 3/4 front and a side view for the docs",
       "render_model"};
   walkgen_examples::cli_defaults(app);
+  app.add_option("--robot", robot_name,
+                 "a robot: walkgen_humanoid or unitree_g1 (models/NAME/robot.yaml), or the path "
+                 "of a robot.yaml (docs/robots.md)");
   app.add_option("--out", out_path,
                  "the image (two views of 600 x 800 px side by side); its extension picks the "
                  "format, e.g. .png")
@@ -82,23 +123,25 @@ int main(int argc, char** argv) {
           },
           "FILE"));
   WALKGEN_CLI_PARSE(app, argc, argv);
-  const std::string xml = walkgen::humanoid_mjcf_path();
-  char error[1000] = "";
-  std::unique_ptr<mjModel, void (*)(mjModel*)> model(
-      mj_loadXML(xml.c_str(), nullptr, error, sizeof(error)), mj_deleteModel);
-  if (model == nullptr) {
-    std::fprintf(stderr, "render_model: cannot load %s: %s\n", xml.c_str(), error);
+  walkgen::RobotDescription robot;
+  walkgen::detail::LoadedModel model;
+  try {
+    robot = walkgen::find_robot_description(robot_name);
+    model = walkgen::detail::load_mjcf(robot.mjcf_path, "render_model");
+    walkgen::check_robot_against_model(robot, *model.m);
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "render_model: %s\n", e.what());
     return 1;
   }
-  mjModel* m = model.get();
+  mjModel* m = model.m.get();
   std::unique_ptr<mjData, void (*)(mjData*)> data(mj_makeData(m), mj_deleteData);
-  const int stand = mj_name2id(m, mjOBJ_KEY, "stand");
-  if (stand < 0) {
-    std::fprintf(stderr, "render_model: the model has no keyframe \"stand\"\n");
+  Eigen::Vector3d com;
+  try {
+    com = stand(robot, m, data.get());
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "render_model: %s\n", e.what());
     return 1;
   }
-  mj_resetDataKeyframe(m, data.get(), stand);
-  mj_forward(m, data.get());
 
   walkgen::detail::EglContext gl;
   if (!gl.make_current()) {
@@ -127,8 +170,8 @@ int main(int argc, char** argv) {
   } else {
     cv::Mat image(kHeight, 2 * kWidth, CV_8UC3, cv::Scalar(0, 0, 0));
     // The robot faces +x; a free camera at azimuth a looks along (cos a, sin a).
-    render_view(m, data.get(), scene, context, option, 215.0, -15.0, image, 0);     // 3/4 front
-    render_view(m, data.get(), scene, context, option, 90.0, -5.0, image, kWidth);  // right side
+    render_view(m, data.get(), scene, context, option, com, 215.0, -15.0, image, 0);  // 3/4 front
+    render_view(m, data.get(), scene, context, option, com, 90.0, -5.0, image, kWidth);  // side
     bool written = false;
     try {
       written = cv::imwrite(out_path, image);
