@@ -171,6 +171,8 @@ TEST(RobotDescription, ValidateNamesTheBadEntry) {
   expect_bad([](RobotDescription& d) { d.cameras[0].clear(); }, "RobotDescription.cameras");
   expect_bad([](RobotDescription& d) { d.stand_pose.push_back({"l_elbow", 0.3}); }, "'l_elbow'");
   expect_bad([](RobotDescription& d) { d.stand_pose[0].angle = NAN; }, "finite angles");
+  expect_bad([](RobotDescription& d) { d.stand_pose.push_back(d.stand_pose[1]); },
+             "'l_knee' twice");
   expect_bad([](RobotDescription& d) { d.ft_sensor_height = 0.0; },
              "RobotDescription.ft_sensor_height");
   expect_bad([](RobotDescription& d) { d.walking.foot_width = -1.0; }, "foot_width");

@@ -112,12 +112,17 @@ inline void validate(const RobotDescription& d) {
                      "'" + f.name + "' twice");
     }
   }
-  for (const JointAngle& a : d.stand_pose) {
+  for (std::size_t i = 0; i < d.stand_pose.size(); ++i) {
+    const JointAngle& a = d.stand_pose[i];
     bool known = false;
     for (const std::string& j : d.joint_names) known = known || j == a.joint;
     check_argument(known, "RobotDescription.stand_pose", "joints of joint_names",
                    "'" + a.joint + "'");
     check_argument(std::isfinite(a.angle), "RobotDescription.stand_pose", "finite angles", a.angle);
+    for (std::size_t j = 0; j < i; ++j) {
+      check_argument(d.stand_pose[j].joint != a.joint, "RobotDescription.stand_pose",
+                     "each joint once", "'" + a.joint + "' twice");
+    }
   }
   validate(d.walking);
 }
