@@ -68,12 +68,27 @@ TEST(MeasuredZmp, NoContactIsInvalidAndBadHeightsThrow) {
   const walkgen::MeasuredZmp zmp = measured_zmp({{hanging, hanging}}, 0.03);
   EXPECT_FALSE(zmp.valid);
   EXPECT_EQ(zmp.normal_force, 0.0);
-  EXPECT_THROW(measured_zmp({{hanging, hanging}}, 0.0), walkgen::invalid_argument);
+  EXPECT_THROW(measured_zmp({{hanging, hanging}}, -0.01), walkgen::invalid_argument);
+  EXPECT_NO_THROW(measured_zmp({{hanging, hanging}}, 0.0));  // readings at the sole
   EXPECT_THROW(measured_zmp({{hanging, hanging}}, std::nan("")), walkgen::invalid_argument);
   EXPECT_THROW(measured_zmp({{hanging, hanging}}, 0.03, -1.0), walkgen::invalid_argument);
 }
 
+TEST(MeasuredZmp, ReadingsAtTheSoleGiveTheCentreOfPressureWithoutAnOffset) {
+  // A contact wrench reported at the sole (d = 0): 100 N at (0.02, -0.01) of the sole frame
+  // has the moment tau = r x f = (-0.01 * 100, -0.02 * 100, 0) about the sole origin.
+  const ForceTorqueReading at_sole =
+      reading({0, 0, 100.0}, Eigen::Vector3d(-1.0, -2.0, 0.0), {0.3, 0.1, 0.0}, 0.0);
+  const walkgen::MeasuredZmp zmp = measured_zmp({{at_sole, at_sole}}, 0.0);
+  ASSERT_TRUE(zmp.valid);
+  EXPECT_NEAR(zmp.zmp_W.x(), 0.32, 1e-12);
+  EXPECT_NEAR(zmp.zmp_W.y(), 0.09, 1e-12);
+  EXPECT_NEAR(zmp.zmp_W.z(), 0.0, 1e-12);
+}
+
 TEST(RobotStatus, NamesEveryValue) {
+  EXPECT_STREQ(walkgen::to_string(walkgen::JointDrive::position), "position");
+  EXPECT_STREQ(walkgen::to_string(walkgen::JointDrive::torque), "torque");
   EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::ok), "ok");
   EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::fallen), "fallen");
   EXPECT_STREQ(walkgen::to_string(walkgen::RobotStatus::diverged), "diverged");
@@ -120,7 +135,8 @@ TEST(SupportPolygonMargin, NoContactIsNanAndBadSizesThrow) {
   const std::array<ForceTorqueReading, 2> ft{};
   walkgen::MeasuredZmp none;  // not valid
   EXPECT_TRUE(std::isnan(walkgen::support_polygon_margin(none, ft, 0.03, 0.2, 0.1)));
-  EXPECT_THROW(walkgen::support_polygon_margin(none, ft, 0.0, 0.2, 0.1), walkgen::invalid_argument);
+  EXPECT_THROW(walkgen::support_polygon_margin(none, ft, -0.01, 0.2, 0.1),
+               walkgen::invalid_argument);
   EXPECT_THROW(walkgen::support_polygon_margin(none, ft, 0.03, -0.2, 0.1),
                walkgen::invalid_argument);
   EXPECT_THROW(walkgen::support_polygon_margin(none, ft, 0.03, 0.2, std::nan("")),

@@ -61,6 +61,12 @@ TEST(RobotDescriptionFile, G1FileLoadsWithItsFramesAndGeometry) {
   EXPECT_EQ(g1.frames[0].xyz, Eigen::Vector3d(0.035, 0.0, -0.035));
   EXPECT_TRUE(g1.ft_sensor_frames[0].empty());
   EXPECT_TRUE(g1.cameras[0].empty());
+  // Every joint in one group; the legs' gains.
+  const walkgen::JointGains gains = walkgen::joint_gains(g1);
+  EXPECT_TRUE(gains.kp.allFinite() && gains.kd.allFinite());
+  EXPECT_EQ(gains.kp[3], 200.0);  // left_knee_joint
+  EXPECT_EQ(gains.kd[3], 5.0);
+  EXPECT_EQ(gains.kp[13], 40.0);  // left_shoulder_pitch_joint
   // walking_preset hrp2 under the file's keys.
   EXPECT_EQ(g1.walking.t_step, walkgen::hrp2_settings().t_step);
   EXPECT_EQ(g1.walking.foot_length, 0.17);
@@ -94,6 +100,16 @@ TEST(RobotDescriptionFile, ErrorsNameTheKey) {
   bad(kMinimal + "stand_pose: {hip: .nan}\n", {"key 'stand_pose.hip'", "a finite number"});
   bad(kMinimal + "stand_pose: {ankle: 0.1}\n", {"RobotDescription.stand_pose", "'ankle'"});
   bad(kMinimal + "frames: {l_sole: {xyz: [0, 0, 0]}}\n", {"frames.l_sole", "the key body"});
+  bad(kMinimal + "joint_groups: {legs: {joints: [hip], kp: 100}}\n",
+      {"joint_groups.legs", "joints, kp and kd"});
+  bad(kMinimal + "joint_groups: {legs: {joints: [hip], kp: 100, kd: 1, ki: 3}}\n",
+      {"joint_groups.legs.ki", "joints, kp or kd"});
+  bad(kMinimal + "joint_groups: {legs: {joints: [hip, ankle], kp: 100, kd: 1}}\n",
+      {"joint_groups: 'legs'", "'ankle'"});
+  bad(kMinimal +
+          "joint_groups: {a: {joints: [hip], kp: 1, kd: 1}, b: {joints: [hip], kp: 1, kd: 1}}\n",
+      {"each joint in one group only", "'hip' 2 times"});
+  bad(kMinimal + "joint_groups: {legs: {joints: [hip], kp: -1, kd: 1}}\n", {"kp, kd >= 0"});
   bad(kMinimal + "frames: {l_sole: {body: foot, xyz: [0, 0]}}\n",
       {"frames.l_sole.xyz", "a list of 3 numbers"});
   bad(kMinimal + "frames: {l_sole: {body: foot, size: 1}}\n",

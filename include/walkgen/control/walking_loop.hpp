@@ -91,7 +91,8 @@ struct WalkingLoopSettings {
   /// from any description.
   std::string left_sole_link = walkgen_humanoid_description().sole_frames[0];
   std::string right_sole_link = walkgen_humanoid_description().sole_frames[1];
-  /// Frames of the ankle force-torque sensors in the tree (left, right).
+  /// Frames of the ankle force-torque sensors in the tree (left, right): where the robot's
+  /// readings are (the soles for a robot that reports contact forces instead).
   std::string left_ft_sensor_link = walkgen_humanoid_description().ft_sensor_frames[0];
   std::string right_ft_sensor_link = walkgen_humanoid_description().ft_sensor_frames[1];
   /// [s] start(): time to move the CoM from where it stands over the support foot.
@@ -113,8 +114,10 @@ inline WalkingLoopSettings loop_settings(const RobotDescription& robot) {
   WalkingLoopSettings s;
   s.left_sole_link = robot.sole_frames[0];
   s.right_sole_link = robot.sole_frames[1];
-  s.left_ft_sensor_link = robot.ft_sensor_frames[0];
-  s.right_ft_sensor_link = robot.ft_sensor_frames[1];
+  // A robot without ankle sensors reports its contact forces at the soles (MujocoRobot).
+  const bool sensors = !robot.ft_sensor_frames[0].empty();
+  s.left_ft_sensor_link = sensors ? robot.ft_sensor_frames[0] : robot.sole_frames[0];
+  s.right_ft_sensor_link = sensors ? robot.ft_sensor_frames[1] : robot.sole_frames[1];
   return s;
 }
 

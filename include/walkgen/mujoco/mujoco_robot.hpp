@@ -5,12 +5,24 @@
 /// never includes this header.
 ///
 /// Loads an MJCF (walkgen's humanoid, models/walkgen_humanoid.xml, unless told otherwise), maps
-/// the joint names to MuJoCo joints, position actuators and `<joint>_pos` sensors and the ankle
-/// sensor sites to their `<site>_force` / `<site>_torque` sensors by name, runs headless at the
-/// model's timestep, and renders the chest cameras offscreen through EGL (Mesa's surfaceless
-/// platform, software rendering). Divergence (non-finite state, MuJoCo's bad-acceleration reset)
-/// and falls (base below fall_height_ratio of its height in the initial keyframe) stop the robot
-/// and are reported in its status.
+/// the joint names to MuJoCo joints, the actuators and jointpos sensors on them (measured
+/// positions are qpos where a joint has no sensor) and the ankle sensor sites to their
+/// `<site>_force` / `<site>_torque` sensors by name, runs headless at the model's timestep, and
+/// renders the chest cameras offscreen through EGL (Mesa's surfaceless platform, software
+/// rendering). Divergence (non-finite state, MuJoCo's bad-acceleration reset) and falls (base
+/// below fall_height_ratio of its height in the initial state) stop the robot and are reported
+/// in its status.
+///
+/// Two drives (RobotInfo::drive): position servos (MuJoCo `<position>` actuators, the model's
+/// gains) take the joint targets as their control; torque motors (`<motor>`) are driven by
+/// walkgen's JointTorqueController at every physics step, on the targets interpolated over the
+/// command period, with the settings' gains, a feed-forward torque (JointFeedforward) and the
+/// motors' ctrlrange as torque limits. Motors on joints the settings do not name get zero torque.
+///
+/// A robot without ankle sensors (no ft_sensor_sites) reports the contact forces on each foot as
+/// its force-torque readings, at the sole frames (RobotInfo::ft_sensor_height 0): the wrench the
+/// ground exerts on the foot's bodies, from MuJoCo's contact forces (mj_contactForce), so that
+/// measured_zmp() gives the centre of pressure.
 
 #include <mujoco/mujoco.h>
 
@@ -25,6 +37,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,7 +45,9 @@
 #include "walkgen/core/data_dir.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/kinematics/kinematic_tree.hpp"
 #include "walkgen/mujoco/detail/egl_context.hpp"
+#include "walkgen/robot/joint_control.hpp"
 #include "walkgen/robot/robot.hpp"
 #include "walkgen/robot/robot_description.hpp"
 
@@ -74,22 +89,59 @@ struct SceneObject {
   bool movable = false;
 };
 
+/// The feed-forward torque of a torque-driven robot's joint controller.
+enum class JointFeedforward : std::uint8_t {
+  none,     ///< PD only
+  gravity,  ///< MuJoCo's bias forces (gravity, Coriolis, centrifugal) at the measured state
+  /// The bias forces minus the joint torques through which the feet carry the robot's weight:
+  /// vertical forces summing to m g, at the ground projection of the CoM, shared between the
+  /// feet in contact by where the CoM lies between them (the torques a standing or slowly
+  /// walking robot needs; the bias forces alone treat the legs as hanging).
+  weight,
+};
+
+/// "none", "gravity" or "weight", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(JointFeedforward f) noexcept {
+  switch (f) {
+    case JointFeedforward::none:
+      return "none";
+    case JointFeedforward::gravity:
+      return "gravity";
+    case JointFeedforward::weight:
+      return "weight";
+  }
+  return "unknown";
+}
+
 /// How a MujocoRobot maps our names onto the model. The defaults describe walkgen's humanoid
 /// (walkgen_humanoid_description()); mujoco_robot_settings() takes them from any description.
 struct MujocoRobotSettings {
   /// MJCF file; empty: humanoid_mjcf_path().
   std::string model_path;
-  /// Our joints, in command/measurement order; each needs a MuJoCo joint of that name, a
-  /// position actuator of that name on it and a jointpos sensor "<name>_pos".
+  /// Our joints, in command/measurement order; each needs a MuJoCo hinge or slide joint of
+  /// that name with one actuator on it (all position servos or all motors).
   std::vector<std::string> joint_names = walkgen_humanoid_description().joint_names;
-  /// Ankle sensor sites (left, right) with force/torque sensors "<site>_force", "<site>_torque".
+  /// Ankle sensor sites (left, right) with force/torque sensors "<site>_force", "<site>_torque";
+  /// none (two empty names): the contact forces at the sole frames are the readings.
   std::array<std::string, 2> ft_sensor_sites = walkgen_humanoid_description().ft_sensor_frames;
-  /// Chest cameras (left, right).
+  /// Sole frames (left, right): sites of the model or added `frames`.
+  std::array<std::string, 2> sole_frames = walkgen_humanoid_description().sole_frames;
+  /// Frames added to bodies of the model (RobotDescription::frames), e.g. soles.
+  std::vector<FrameDescription> frames = walkgen_humanoid_description().frames;
+  /// Chest cameras (left, right); none (two empty names): render_cameras() is unavailable.
   std::array<std::string, 2> cameras = walkgen_humanoid_description().cameras;
   /// The floating base, whose height tells a fall.
   std::string base_body = walkgen_humanoid_description().base_body;
-  /// Initial state (qpos, ctrl); empty: the model's qpos0 with zero targets.
+  /// Initial state (qpos, ctrl); empty: the model's qpos0 with stand_pose's joints, the base
+  /// lowered or raised until the lower sole touches the floor (z = 0).
   std::string keyframe = walkgen_humanoid_description().stand_keyframe;
+  /// The standing posture where there is no keyframe (RobotDescription::stand_pose).
+  std::vector<JointAngle> stand_pose = walkgen_humanoid_description().stand_pose;
+  /// Torque drive: PD gains per joint, joint_names order (joint_gains() of a description);
+  /// every commanded joint of a torque-driven robot needs finite gains. Empty: none given.
+  Eigen::VectorXd kp, kd;
+  /// Torque drive: the controller's feed-forward torque.
+  JointFeedforward feedforward = JointFeedforward::weight;
   /// Fallen when the base is below this fraction of its initial height.
   double fall_height_ratio = 0.8;
   /// Static objects added to the world of the model (the model file itself is not changed).
@@ -112,6 +164,13 @@ inline void validate(const MujocoRobotSettings& s) {
                  "a width in [1, 16384] px", s.view_width);
   check_argument(s.view_height >= 1 && s.view_height <= 16384, "MujocoRobotSettings.view_height",
                  "a height in [1, 16384] px", s.view_height);
+  const auto n = static_cast<Eigen::Index>(s.joint_names.size());
+  check_argument((s.kp.size() == 0 && s.kd.size() == 0) || (s.kp.size() == n && s.kd.size() == n),
+                 "MujocoRobotSettings.kp, kd", "none or one gain per joint name each",
+                 std::to_string(s.kp.size()) + ", " + std::to_string(s.kd.size()));
+  check_argument(s.sole_frames[0].empty() == s.sole_frames[1].empty(),
+                 "MujocoRobotSettings.sole_frames", "two names (left, right) or none",
+                 "'" + s.sole_frames[0] + "', '" + s.sole_frames[1] + "'");
   for (const SceneObject& o : s.objects) {
     bool name_ok = !o.name.empty();
     for (char c : o.name)
@@ -127,16 +186,25 @@ inline void validate(const MujocoRobotSettings& s) {
   }
 }
 
-/// The settings that load `robot`'s MJCF with its names (joints, ankle sensor sites, cameras,
-/// base, standing keyframe); the rest at their defaults.
+/// The settings that load `robot`'s MJCF with its names (joints, ankle sensor sites, soles and
+/// added frames, cameras, base, standing keyframe or pose) and its joint groups' gains; the rest
+/// at their defaults.
 inline MujocoRobotSettings mujoco_robot_settings(const RobotDescription& robot) {
   MujocoRobotSettings s;
   s.model_path = robot.mjcf_path;
   s.joint_names = robot.joint_names;
   s.ft_sensor_sites = robot.ft_sensor_frames;
+  s.sole_frames = robot.sole_frames;
+  s.frames = robot.frames;
   s.cameras = robot.cameras;
   s.base_body = robot.base_body;
   s.keyframe = robot.stand_keyframe;
+  s.stand_pose = robot.stand_pose;
+  if (!robot.joint_groups.empty()) {
+    const JointGains gains = joint_gains(robot);
+    s.kp = gains.kp;
+    s.kd = gains.kd;
+  }
   return s;
 }
 
@@ -153,15 +221,26 @@ class MujocoRobot final : public Robot {
     map_names();
     info_.joint_names = settings_.joint_names;
     info_.timestep = model_->opt.timestep;
-    info_.ft_sensor_height = custom_numeric("ft_sensor_height", 0, 0.0);
     info_.image_width = static_cast<int>(custom_numeric("camera_resolution", 0, 320));
     info_.image_height = static_cast<int>(custom_numeric("camera_resolution", 1, 240));
-    check_positive("MujocoRobot: <numeric name='ft_sensor_height'>", info_.ft_sensor_height,
-                   "a sensor height > 0 m in the model's <custom> section");
+    if (has_ft_sensors()) {
+      info_.ft_sensor_height = custom_numeric("ft_sensor_height", 0, 0.0);
+      check_positive("MujocoRobot: <numeric name='ft_sensor_height'>", info_.ft_sensor_height,
+                     "a sensor height > 0 m in the model's <custom> section");
+    }
     const int n = static_cast<int>(settings_.joint_names.size());
     q_target_ = Eigen::VectorXd::Zero(n);
+    q_from_ = Eigen::VectorXd::Zero(n);
+    q_ref_ = Eigen::VectorXd::Zero(n);
+    dq_ref_ = Eigen::VectorXd::Zero(n);
+    tau_ff_ = Eigen::VectorXd::Zero(n);
+    q_now_ = Eigen::VectorXd::Zero(n);
+    dq_now_ = Eigen::VectorXd::Zero(n);
     output_.q.resize(n);
     output_.dq.resize(n);
+    output_.tau = Eigen::VectorXd::Zero(n);
+    jacobian_.resize(static_cast<std::size_t>(3 * model_->nv));
+    if (info_.drive == JointDrive::torque) make_controller();
     reset();
     info_.nominal_base_height = output_.base_height;
     info_.fall_height = settings_.fall_height_ratio * info_.nominal_base_height;
@@ -197,12 +276,26 @@ class MujocoRobot final : public Robot {
   [[nodiscard]] RobotStatus step(double duration) override {
     check_positive("MujocoRobot::step: duration", duration, "a finite duration > 0 s");
     if (output_.status != RobotStatus::ok) return output_.status;
-    for (std::size_t i = 0; i < joints_.size(); ++i)
-      data_->ctrl[joints_[i].actuator] = q_target_[i];
     const long steps = std::max(1L, std::lround(duration / model_->opt.timestep));
-    for (long k = 0; k < steps; ++k) {
-      mj_step(model_.get(), data_.get());
-      if (check_state()) break;
+    if (info_.drive == JointDrive::position) {
+      for (std::size_t i = 0; i < joints_.size(); ++i)
+        data_->ctrl[joints_[i].actuator] = q_target_[static_cast<Eigen::Index>(i)];
+      for (long k = 0; k < steps; ++k) {
+        mj_step(model_.get(), data_.get());
+        if (check_state()) break;
+      }
+    } else {
+      // The targets ramp from the previous command to this one over the period (the IK's
+      // samples are positions at the period's ends): velocity reference = the ramp's slope.
+      dq_ref_ = (q_target_ - q_from_) / (double(steps) * model_->opt.timestep);
+      for (long k = 0; k < steps; ++k) {
+        q_ref_ = q_from_ + (double(k + 1) / double(steps)) * (q_target_ - q_from_);
+        mj_step1(model_.get(), data_.get());  // positions, velocities, contacts, bias forces
+        apply_joint_torques();
+        mj_step2(model_.get(), data_.get());
+        if (check_state()) break;
+      }
+      q_from_ = q_target_;
     }
     if (output_.status == RobotStatus::ok) mj_forward(model_.get(), data_.get());  // fresh sensors
     read_output();
@@ -210,6 +303,13 @@ class MujocoRobot final : public Robot {
   }
 
   [[nodiscard]] const StereoImages& render_cameras() override {
+    if (camera_ids_[0] < 0) {
+      images_.status = RenderStatus::unavailable;
+      images_.message =
+          "rendering unavailable: the robot has no cameras (MujocoRobotSettings::"
+          "cameras is empty)";
+      return images_;
+    }
     if (!renderer_ready()) return images_;
     for (int c = 0; c < 2; ++c)
       render_camera(camera_ids_[c], c == 0 ? images_.left : images_.right);
@@ -275,17 +375,39 @@ class MujocoRobot final : public Robot {
     mj_resetData(model_.get(), data_.get());
     if (keyframe_ >= 0) {
       mj_resetDataKeyframe(model_.get(), data_.get(), keyframe_);
-      for (std::size_t i = 0; i < joints_.size(); ++i) {
-        q_target_[static_cast<Eigen::Index>(i)] =
-            model_->key_ctrl[keyframe_ * model_->nu + joints_[i].actuator];
-      }
     } else {
-      q_target_.setZero();
+      place_in_stand_pose();
     }
+    for (std::size_t i = 0; i < joints_.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      q_target_[k] = keyframe_ >= 0 && info_.drive == JointDrive::position
+                         ? model_->key_ctrl[keyframe_ * model_->nu + joints_[i].actuator]
+                         : data_->qpos[joints_[i].qpos];
+    }
+    q_from_ = q_target_;
+    for (int a = 0; a < model_->nu && info_.drive == JointDrive::torque; ++a) data_->ctrl[a] = 0.0;
     mj_forward(model_.get(), data_.get());
     output_.status = RobotStatus::ok;
     output_.message.clear();
+    output_.saturations = 0;
+    output_.tau.setZero();
     read_output();
+  }
+
+  /// The contact forces on each foot (the wrench the ground and anything else outside the foot
+  /// exerts on the foot's bodies) as force-torque readings at the frames of output().ft: the
+  /// ankle sensor sites, or the soles when the robot has no sensors (then output().ft itself).
+  /// A check of the sensors, or of the centre of pressure: measured_zmp(contact_ft(),
+  /// info().ft_sensor_height) is MuJoCo's contact centre of pressure.
+  const std::array<ForceTorqueReading, 2>& contact_ft() {
+    for (int f = 0; f < 2; ++f) {
+      ForceTorqueReading& r = contact_ft_[std::size_t(f)];
+      r.pose_W_S = has_ft_sensors() ? pose(data_->site_xpos + 3 * ft_sites_[f],
+                                           data_->site_xmat + 9 * ft_sites_[f])
+                                    : sole_pose_W(f);
+    }
+    contact_wrenches(contact_ft_);
+    return contact_ft_;
   }
 
  private:
@@ -293,7 +415,13 @@ class MujocoRobot final : public Robot {
     int qpos;      ///< address in qpos
     int dof;       ///< address in qvel
     int actuator;  ///< index in ctrl
-    int sensor;    ///< address of the jointpos sensor in sensordata
+    int sensor;    ///< address of the jointpos sensor in sensordata, -1: read qpos
+  };
+  /// A frame fixed to a body: p_W = xpos(body) + xmat(body) * position.
+  struct BodyFrame {
+    int body = -1;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   };
   struct ModelDeleter {
     void operator()(mjModel* m) const { mj_deleteModel(m); }
@@ -403,34 +531,89 @@ class MujocoRobot final : public Robot {
     return model_->sensor_adr[id];
   }
 
+  /// The sole frame `name`: a site of the model or a frame the settings add; body -1 (and the
+  /// name added to `missing`) when neither.
+  BodyFrame find_frame(const std::string& name, std::vector<std::string>& missing) const {
+    const mjModel* m = model_.get();
+    BodyFrame frame;
+    const int site = mj_name2id(m, mjOBJ_SITE, name.c_str());
+    if (site >= 0) {
+      frame.body = m->site_bodyid[site];
+      frame.position = Eigen::Map<const Eigen::Vector3d>(m->site_pos + 3 * site);
+      const mjtNum* q = m->site_quat + 4 * site;  // w, x, y, z
+      frame.rotation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+      return frame;
+    }
+    for (const FrameDescription& f : settings_.frames) {
+      if (f.name != name) continue;
+      frame.body = mj_name2id(m, mjOBJ_BODY, f.body.c_str());
+      if (frame.body < 0) {
+        missing.push_back("body '" + f.body + "' (of frame '" + name + "')");
+        return frame;
+      }
+      frame.position = f.xyz;
+      frame.rotation = detail::rotation_from_rpy(f.rpy);
+      return frame;
+    }
+    missing.push_back("site or added frame '" + name + "'");
+    return frame;
+  }
+
   void map_names() {
     const mjModel* m = model_.get();
     std::vector<std::string> missing;
+    std::vector<bool> ours(static_cast<std::size_t>(m->nu), false);
+    int motors = 0;
     for (const std::string& name : settings_.joint_names) {
       JointMap map{-1, -1, -1, -1};
       const int joint = mj_name2id(m, mjOBJ_JOINT, name.c_str());
       if (joint < 0 || (m->jnt_type[joint] != mjJNT_HINGE && m->jnt_type[joint] != mjJNT_SLIDE)) {
         missing.push_back("joint '" + name + "'");
-      } else {
-        map.qpos = m->jnt_qposadr[joint];
-        map.dof = m->jnt_dofadr[joint];
+        joints_.push_back(map);
+        continue;
       }
-      const int actuator = mj_name2id(m, mjOBJ_ACTUATOR, name.c_str());
-      if (actuator < 0 || m->actuator_trntype[actuator] != mjTRN_JOINT ||
-          m->actuator_trnid[2 * actuator] != joint) {
-        missing.push_back("actuator '" + name + "' on joint '" + name + "'");
-      } else {
-        map.actuator = actuator;
+      map.qpos = m->jnt_qposadr[joint];
+      map.dof = m->jnt_dofadr[joint];
+      for (int a = 0; a < m->nu && map.actuator < 0; ++a) {
+        if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_trnid[2 * a] == joint) {
+          map.actuator = a;
+        }
       }
-      map.sensor = sensor_address(name + "_pos", mjSENS_JOINTPOS, 1, missing);
+      if (map.actuator < 0) {
+        missing.push_back("an actuator on joint '" + name + "'");
+      } else {
+        ours[static_cast<std::size_t>(map.actuator)] = true;
+        const int a = map.actuator;
+        const bool motor =
+            m->actuator_gaintype[a] == mjGAIN_FIXED && m->actuator_biastype[a] == mjBIAS_NONE;
+        const bool servo =
+            m->actuator_gaintype[a] == mjGAIN_FIXED && m->actuator_biastype[a] == mjBIAS_AFFINE &&
+            m->actuator_biasprm[mjNBIAS * a + 1] == -m->actuator_gainprm[mjNGAIN * a];
+        check_argument(motor || servo,
+                       ("MujocoRobot: the actuator on joint '" + name + "'").c_str(),
+                       "a <motor> or a <position> servo", "another kind of actuator");
+        motors += motor;
+      }
+      for (int k = 0; k < m->nsensor && map.sensor < 0; ++k) {
+        if (m->sensor_type[k] == mjSENS_JOINTPOS && m->sensor_objid[k] == joint) {
+          map.sensor = m->sensor_adr[k];
+        }
+      }
       joints_.push_back(map);
     }
+    if (has_ft_sensors()) {
+      for (int f = 0; f < 2; ++f) {
+        const std::string& site = settings_.ft_sensor_sites[f];
+        ft_sites_[f] = mj_name2id(m, mjOBJ_SITE, site.c_str());
+        if (ft_sites_[f] < 0) missing.push_back("site '" + site + "'");
+        ft_force_[f] = sensor_address(site + "_force", mjSENS_FORCE, 3, missing);
+        ft_torque_[f] = sensor_address(site + "_torque", mjSENS_TORQUE, 3, missing);
+      }
+    }
     for (int f = 0; f < 2; ++f) {
-      const std::string& site = settings_.ft_sensor_sites[f];
-      ft_sites_[f] = mj_name2id(m, mjOBJ_SITE, site.c_str());
-      if (ft_sites_[f] < 0) missing.push_back("site '" + site + "'");
-      ft_force_[f] = sensor_address(site + "_force", mjSENS_FORCE, 3, missing);
-      ft_torque_[f] = sensor_address(site + "_torque", mjSENS_TORQUE, 3, missing);
+      if (!settings_.sole_frames[0].empty())
+        soles_[f] = find_frame(settings_.sole_frames[f], missing);
+      if (settings_.cameras[0].empty()) continue;
       camera_ids_[f] = mj_name2id(m, mjOBJ_CAMERA, settings_.cameras[f].c_str());
       if (camera_ids_[f] < 0) missing.push_back("camera '" + settings_.cameras[f] + "'");
     }
@@ -441,17 +624,214 @@ class MujocoRobot final : public Robot {
       keyframe_ = mj_name2id(m, mjOBJ_KEY, settings_.keyframe.c_str());
       if (keyframe_ < 0) missing.push_back("keyframe '" + settings_.keyframe + "'");
     }
+    for (const JointAngle& a : settings_.stand_pose) {  // used without a keyframe only
+      if (keyframe_ >= 0 || !settings_.keyframe.empty()) break;
+      bool named = false;
+      for (const std::string& j : settings_.joint_names) named = named || j == a.joint;
+      if (!named) missing.push_back("stand_pose joint '" + a.joint + "' among the joint names");
+    }
     if (!missing.empty()) {
       std::string list;
       for (const std::string& s : missing) list += (list.empty() ? "" : ", ") + s;
       throw invalid_argument("MujocoRobot: '" + settings_.model_path +
                              "' lacks what the settings name: " + list +
-                             " (hint: MujocoRobotSettings names joints, actuators, sensors, "
-                             "sites, cameras, the base body and the keyframe)");
+                             " (hint: MujocoRobotSettings names joints, sensor sites, soles, "
+                             "cameras, the base body and the keyframe; the model has " +
+                             model_inventory() + ")");
     }
-    check_argument(m->nu == static_cast<int>(joints_.size()), "MujocoRobot: actuators",
-                   std::to_string(joints_.size()) + " (one per joint name)", m->nu,
-                   "every actuator of the model must be driven by a named joint");
+    const int n = static_cast<int>(joints_.size());
+    check_argument(motors == 0 || motors == n, "MujocoRobot: actuators",
+                   "all position servos or all motors",
+                   std::to_string(motors) + " motors of " + std::to_string(n) + " joints");
+    info_.drive = motors > 0 ? JointDrive::torque : JointDrive::position;
+    for (int a = 0; a < m->nu; ++a) {  // servos of other joints would hold them at 0 rad
+      const bool motor = m->actuator_biastype[a] == mjBIAS_NONE;
+      check_argument(
+          ours[static_cast<std::size_t>(a)] || (info_.drive == JointDrive::torque && motor),
+          "MujocoRobot: actuators", std::to_string(n) + " (one per joint name)", m->nu,
+          "every actuator of the model must be driven by a named joint, or be a motor "
+          "(then it gets zero torque)");
+    }
+    // Each body's foot (0 left, 1 right, -1 neither): the sole body and its descendants.
+    foot_of_body_.assign(static_cast<std::size_t>(m->nbody), -1);
+    for (int b = 1; b < m->nbody; ++b) {
+      for (int a = b; a > 0; a = m->body_parentid[a]) {
+        for (int f = 0; f < 2; ++f) {
+          if (soles_[f].body == a) foot_of_body_[static_cast<std::size_t>(b)] = f;
+        }
+      }
+    }
+    check_argument(has_ft_sensors() || soles_[0].body >= 0, "MujocoRobot: sole_frames",
+                   "sole frames for the contact readings of a robot without ankle sensors", "none");
+  }
+
+  /// What a model has, for error messages: its joints and sites.
+  std::string model_inventory() const {
+    const mjModel* m = model_.get();
+    std::string joints, sites;
+    for (int j = 0; j < m->njnt; ++j) {
+      if (m->jnt_type[j] != mjJNT_FREE)
+        joints += (joints.empty() ? "" : ", ") +
+                  std::string(mj_id2name(m, mjOBJ_JOINT, j) ? mj_id2name(m, mjOBJ_JOINT, j) : "?");
+    }
+    for (int k = 0; k < m->nsite; ++k) {
+      const char* name = mj_id2name(m, mjOBJ_SITE, k);
+      sites += (sites.empty() ? "" : ", ") + std::string(name ? name : "?");
+    }
+    return "joints [" + joints + "], sites [" + sites + "]";
+  }
+
+  bool has_ft_sensors() const { return !settings_.ft_sensor_sites[0].empty(); }
+
+  /// The joint controller of a torque-driven robot: the settings' gains, ctrlrange limits.
+  void make_controller() {
+    const auto n = static_cast<Eigen::Index>(joints_.size());
+    std::string without;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const bool has = settings_.kp.size() == n && std::isfinite(settings_.kp[i]) &&
+                       std::isfinite(settings_.kd[i]);
+      if (!has)
+        without += (without.empty() ? "'" : ", '") + settings_.joint_names[std::size_t(i)] + "'";
+    }
+    check_argument(without.empty(), "MujocoRobot: torque-driven joints", "PD gains for every one",
+                   "none for " + without,
+                   "add the joints to a joint group (joint_groups: {name: {joints, kp, kd}}) of "
+                   "the robot description, or set MujocoRobotSettings::kp and kd");
+    Eigen::VectorXd lo(n), hi(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const int a = joints_[std::size_t(i)].actuator;
+      const bool limited = model_->actuator_ctrllimited[a] != 0;
+      lo[i] = limited ? model_->actuator_ctrlrange[2 * a] : -mjMAXVAL;
+      hi[i] = limited ? model_->actuator_ctrlrange[2 * a + 1] : mjMAXVAL;
+    }
+    controller_.emplace(settings_.kp, settings_.kd, lo, hi);
+  }
+
+  /// The world pose of sole `f`.
+  Eigen::Isometry3d sole_pose_W(int f) const {
+    const BodyFrame& s = soles_[f];
+    const Eigen::Isometry3d body = pose(data_->xpos + 3 * s.body, data_->xmat + 9 * s.body);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = body.linear() * s.rotation;
+    T.translation() = body * s.position;
+    return T;
+  }
+
+  /// Without a keyframe: the stand pose's joints set, the base moved vertically so that the
+  /// lower sole is at z = 0 (touching the floor; the model's qpos0 when there are no soles).
+  void place_in_stand_pose() {
+    for (const JointAngle& a : settings_.stand_pose) {
+      for (std::size_t i = 0; i < joints_.size(); ++i) {
+        if (settings_.joint_names[i] == a.joint) data_->qpos[joints_[i].qpos] = a.angle;
+      }
+    }
+    mj_kinematics(model_.get(), data_.get());
+    const int root_joint =
+        model_->body_jntnum[base_body_] > 0 ? model_->body_jntadr[base_body_] : -1;
+    if (soles_[0].body < 0 || root_joint < 0 || model_->jnt_type[root_joint] != mjJNT_FREE) return;
+    const double lowest =
+        std::min(sole_pose_W(0).translation().z(), sole_pose_W(1).translation().z());
+    data_->qpos[model_->jnt_qposadr[root_joint] + 2] -= lowest;
+  }
+
+  /// Sets the motors' torques for the state after mj_step1 (torque drive).
+  void apply_joint_torques() {
+    const mjData* d = data_.get();
+    for (std::size_t i = 0; i < joints_.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      q_now_[k] = d->qpos[joints_[i].qpos];
+      dq_now_[k] = d->qvel[joints_[i].dof];
+    }
+    feedforward_torques();
+    const JointTorqueResult r =
+        controller_->compute(q_ref_, dq_ref_, tau_ff_, q_now_, dq_now_, output_.tau);
+    output_.saturations += r.saturated;
+    for (std::size_t i = 0; i < joints_.size(); ++i) {
+      data_->ctrl[joints_[i].actuator] = output_.tau[static_cast<Eigen::Index>(i)];
+    }
+  }
+
+  /// tau_ff_ for the settings' JointFeedforward at the current state (after mj_step1).
+  void feedforward_torques() {
+    const mjModel* m = model_.get();
+    mjData* d = data_.get();
+    if (settings_.feedforward == JointFeedforward::none) {
+      tau_ff_.setZero();
+      return;
+    }
+    for (std::size_t i = 0; i < joints_.size(); ++i) {
+      tau_ff_[static_cast<Eigen::Index>(i)] = d->qfrc_bias[joints_[i].dof];
+    }
+    if (settings_.feedforward != JointFeedforward::weight) return;
+    std::array<bool, 2> contact{{false, false}};
+    for (int c = 0; c < d->ncon; ++c) {
+      const int f1 = foot_of_body_[std::size_t(m->geom_bodyid[d->contact[c].geom1])];
+      const int f2 = foot_of_body_[std::size_t(m->geom_bodyid[d->contact[c].geom2])];
+      if (f1 >= 0 && f2 != f1) contact[std::size_t(f1)] = true;
+      if (f2 >= 0 && f1 != f2) contact[std::size_t(f2)] = true;
+    }
+    if (!contact[0] && !contact[1]) return;
+    // The CoM's ground projection r, shared between the soles s_L, s_R by its place along
+    // the segment between them; each foot's force at its sole shifted by the same offset, so
+    // that the forces' centre of pressure is r.
+    const Eigen::Vector3d r(d->subtree_com[3 * base_body_], d->subtree_com[3 * base_body_ + 1],
+                            0.0);
+    const Eigen::Vector3d s[2] = {sole_pose_W(0).translation(), sole_pose_W(1).translation()};
+    double left = contact[0] ? 1.0 : 0.0;
+    if (contact[0] && contact[1]) {
+      const Eigen::Vector2d between = (s[0] - s[1]).head<2>();
+      const double length2 = between.squaredNorm();
+      left =
+          length2 > 1e-12 ? std::clamp((r - s[1]).head<2>().dot(between) / length2, 0.0, 1.0) : 0.5;
+    }
+    const Eigen::Vector3d centre = left * s[0] + (1.0 - left) * s[1];
+    const double weight = m->body_subtreemass[base_body_] * -m->opt.gravity[2];
+    for (int f = 0; f < 2; ++f) {
+      const double share = f == 0 ? left : 1.0 - left;
+      if (share <= 0.0) continue;
+      Eigen::Vector3d point = s[f] + (r - centre);
+      point.z() = s[f].z();
+      mj_jac(m, d, jacobian_.data(), nullptr, point.data(), soles_[f].body);
+      for (std::size_t i = 0; i < joints_.size(); ++i) {
+        // The ground pushes the foot up with share * m g: tau -= J_z^T f_z.
+        tau_ff_[static_cast<Eigen::Index>(i)] -=
+            jacobian_[std::size_t(2 * m->nv + joints_[i].dof)] * share * weight;
+      }
+    }
+  }
+
+  /// The contact wrenches on each foot, at the poses already in `readings`.
+  void contact_wrenches(std::array<ForceTorqueReading, 2>& readings) const {
+    const mjModel* m = model_.get();
+    const mjData* d = data_.get();
+    Eigen::Vector3d force[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    Eigen::Vector3d torque[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    for (int c = 0; c < d->ncon; ++c) {
+      const mjContact& con = d->contact[c];
+      const int f1 = foot_of_body_[std::size_t(m->geom_bodyid[con.geom1])];
+      const int f2 = foot_of_body_[std::size_t(m->geom_bodyid[con.geom2])];
+      if (f1 == f2) continue;
+      mjtNum local[6];
+      mj_contactForce(m, d, c, local);
+      // The contact frame's rows are the normal (from geom1 to geom2) and two tangents; the
+      // force acts on geom2, its opposite on geom1.
+      const Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>> frame(con.frame);
+      const Eigen::Vector3d on_geom2 =
+          frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]);
+      const Eigen::Vector3d at(con.pos[0], con.pos[1], con.pos[2]);
+      for (int f = 0; f < 2; ++f) {
+        const double sign = f2 == f ? 1.0 : f1 == f ? -1.0 : 0.0;
+        if (sign == 0.0) continue;
+        const Eigen::Vector3d on_foot = sign * on_geom2;
+        force[f] += on_foot;
+        torque[f] += (at - readings[std::size_t(f)].pose_W_S.translation()).cross(on_foot);
+      }
+    }
+    for (int f = 0; f < 2; ++f) {
+      ForceTorqueReading& r = readings[std::size_t(f)];
+      r.force_S = r.pose_W_S.linear().transpose() * force[f];
+      r.torque_S = r.pose_W_S.linear().transpose() * torque[f];
+    }
   }
 
   /// Entry `index` of <custom><numeric name=...>, or `fallback` when the model has none.
@@ -496,15 +876,22 @@ class MujocoRobot final : public Robot {
     output_.time = d->time;
     for (std::size_t i = 0; i < joints_.size(); ++i) {
       const auto k = static_cast<Eigen::Index>(i);
-      output_.q[k] = d->sensordata[joints_[i].sensor];
-      output_.dq[k] = d->qvel[joints_[i].dof];
+      const JointMap& j = joints_[i];
+      output_.q[k] = j.sensor >= 0 ? d->sensordata[j.sensor] : d->qpos[j.qpos];
+      output_.dq[k] = d->qvel[j.dof];
+      if (info_.drive == JointDrive::position) output_.tau[k] = d->actuator_force[j.actuator];
     }
-    for (int f = 0; f < 2; ++f) {
-      // MuJoCo reports the wrench the parent (leg) exerts on the child (foot): negate it.
-      ForceTorqueReading& r = output_.ft[f];
-      r.force_S = -Eigen::Map<const Eigen::Vector3d>(d->sensordata + ft_force_[f]);
-      r.torque_S = -Eigen::Map<const Eigen::Vector3d>(d->sensordata + ft_torque_[f]);
-      r.pose_W_S = pose(d->site_xpos + 3 * ft_sites_[f], d->site_xmat + 9 * ft_sites_[f]);
+    if (has_ft_sensors()) {
+      for (int f = 0; f < 2; ++f) {
+        // MuJoCo reports the wrench the parent (leg) exerts on the child (foot): negate it.
+        ForceTorqueReading& r = output_.ft[f];
+        r.force_S = -Eigen::Map<const Eigen::Vector3d>(d->sensordata + ft_force_[f]);
+        r.torque_S = -Eigen::Map<const Eigen::Vector3d>(d->sensordata + ft_torque_[f]);
+        r.pose_W_S = pose(d->site_xpos + 3 * ft_sites_[f], d->site_xmat + 9 * ft_sites_[f]);
+      }
+    } else {
+      for (int f = 0; f < 2; ++f) output_.ft[std::size_t(f)].pose_W_S = sole_pose_W(f);
+      contact_wrenches(output_.ft);
     }
     output_.base_height = d->xpos[3 * base_body_ + 2];
   }
@@ -600,10 +987,18 @@ class MujocoRobot final : public Robot {
   std::array<int, 2> ft_force_{{-1, -1}};
   std::array<int, 2> ft_torque_{{-1, -1}};
   std::array<int, 2> camera_ids_{{-1, -1}};
+  std::array<BodyFrame, 2> soles_;
+  std::vector<int> foot_of_body_;
   int base_body_ = -1;
   int keyframe_ = -1;
   Eigen::VectorXd q_target_;
   RobotOutput output_;
+  std::array<ForceTorqueReading, 2> contact_ft_;
+
+  // Torque drive: the controller and its buffers (sized once).
+  std::optional<JointTorqueController> controller_;
+  Eigen::VectorXd q_from_, q_ref_, dq_ref_, tau_ff_, q_now_, dq_now_;
+  std::vector<mjtNum> jacobian_;  ///< 3 x nv, row-major (mj_jac)
 
   // Rendering, created on the first render_cameras().
   std::unique_ptr<detail::EglContext> gl_;

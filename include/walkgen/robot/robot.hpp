@@ -83,6 +83,12 @@ struct RobotOutput {
   Eigen::VectorXd dq;                    ///< measured joint velocities [rad/s], same order
   std::array<ForceTorqueReading, 2> ft;  ///< ankle sensors, indexed by Foot (left, right)
   double base_height = 0.0;              ///< [m] height of the floating base (root link) in W
+  /// Joint torques [N m] of the last physics step, joint_names order: what the motors of a
+  /// torque-controlled robot applied (after clamping), the servos' force for position servos.
+  Eigen::VectorXd tau;
+  /// Clamped torques since reset(): (joint, physics step) pairs whose commanded torque
+  /// exceeded the motor's limit (torque drive only; 0 for position servos).
+  long saturations = 0;
   RobotStatus status = RobotStatus::ok;
   std::string message;  ///< why, when status is not ok (e.g. "base height 0.31 m < 0.40 m")
 
@@ -124,15 +130,35 @@ struct StereoImages {
   std::string message;  ///< "rendering unavailable: <why>" unless status is ok
 };
 
+/// How a robot's joints follow the commanded positions.
+enum class JointDrive : std::uint8_t {
+  position,  ///< position servos (the robot's own gains)
+  torque,    ///< torque motors behind walkgen's joint controller (walkgen/robot/joint_control.hpp)
+};
+
+/// "position" or "torque", e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(JointDrive drive) noexcept {
+  switch (drive) {
+    case JointDrive::position:
+      return "position";
+    case JointDrive::torque:
+      return "torque";
+  }
+  return "unknown";
+}
+
 /// What does not change while the robot runs.
 struct RobotInfo {
   std::vector<std::string> joint_names;  ///< the order of commands and measurements
-  double ft_sensor_height = 0.0;         ///< d [m]: sensor origin above the sole (eq. 2.11-2.12)
-  double nominal_base_height = 0.0;      ///< [m] base height standing (reset state)
-  double fall_height = 0.0;              ///< [m] below this base height the robot has fallen
-  double timestep = 0.0;                 ///< [s] of one physics or control step
-  int image_width = 0;                   ///< [px]
-  int image_height = 0;                  ///< [px]
+  /// d [m]: sensor origin above the sole (eq. 2.11-2.12); 0 when the readings are the contact
+  /// forces at the soles (a robot without ankle sensors).
+  double ft_sensor_height = 0.0;
+  JointDrive drive = JointDrive::position;  ///< how the joints follow the commands
+  double nominal_base_height = 0.0;         ///< [m] base height standing (reset state)
+  double fall_height = 0.0;                 ///< [m] below this base height the robot has fallen
+  double timestep = 0.0;                    ///< [s] of one physics or control step
+  int image_width = 0;                      ///< [px]
+  int image_height = 0;                     ///< [px]
 };
 
 /// A robot: joint position targets in, measurements out. Blocks step (convention 13): the
@@ -187,12 +213,15 @@ struct MeasuredZmp {
 /// only weighs on its sensor and would pull the average away).
 ///
 /// @param ft  the left and right readings (index Foot), as in RobotOutput::ft
-/// @param sensor_height  d [m], sensor origin above the sole, > 0
+/// @param sensor_height  d [m], sensor origin above the sole, >= 0 (0: readings at the sole, as
+///   a robot without ankle sensors reports its contact forces)
 /// @param min_normal_force  [N] a foot counts as in contact from this vertical force, > 0
-/// @throws walkgen::invalid_argument when sensor_height or min_normal_force is not finite and > 0.
+/// @throws walkgen::invalid_argument when sensor_height is not finite and >= 0 or
+///   min_normal_force not finite and > 0.
 inline MeasuredZmp measured_zmp(const std::array<ForceTorqueReading, 2>& ft, double sensor_height,
                                 double min_normal_force = 5.0) {
-  check_positive("measured_zmp: sensor_height", sensor_height, "a finite height > 0 m");
+  check_argument(std::isfinite(sensor_height) && sensor_height >= 0.0,
+                 "measured_zmp: sensor_height", "a finite height >= 0 m", sensor_height);
   check_positive("measured_zmp: min_normal_force", min_normal_force, "a finite force > 0 N");
   MeasuredZmp result;
   Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
@@ -223,11 +252,13 @@ inline MeasuredZmp measured_zmp(const std::array<ForceTorqueReading, 2>& ft, dou
 /// @return the distance [m] from the ZMP to the nearest edge when inside (≥ 0), the largest
 ///   violated edge distance, negated, when outside (< 0; for a convex polygon at most the
 ///   Euclidean distance); NaN when zmp is not valid.
-/// @throws walkgen::invalid_argument when a size is not finite and > 0.
+/// @throws walkgen::invalid_argument when sensor_height is not finite and >= 0 or a foot size
+///   not finite and > 0.
 inline double support_polygon_margin(const MeasuredZmp& zmp,
                                      const std::array<ForceTorqueReading, 2>& ft,
                                      double sensor_height, double foot_length, double foot_width) {
-  check_positive("support_polygon_margin: sensor_height", sensor_height, "a finite height > 0 m");
+  check_argument(std::isfinite(sensor_height) && sensor_height >= 0.0,
+                 "support_polygon_margin: sensor_height", "a finite height >= 0 m", sensor_height);
   check_positive("support_polygon_margin: foot_length", foot_length, "a finite length > 0 m");
   check_positive("support_polygon_margin: foot_width", foot_width, "a finite width > 0 m");
   if (!zmp.valid) return std::numeric_limits<double>::quiet_NaN();

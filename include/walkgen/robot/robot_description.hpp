@@ -37,6 +37,16 @@ struct FrameDescription {
   Eigen::Vector3d rpy = Eigen::Vector3d::Zero();  ///< URDF roll, pitch, yaw [rad]
 };
 
+/// Joints that share feedback gains (legs, waist, arms): what a torque-controlled robot's joint
+/// controller (walkgen/robot/joint_control.hpp) uses. A position-servo robot's gains are its
+/// model's; its description needs no groups.
+struct JointGroup {
+  std::string name;                 ///< e.g. "legs"
+  std::vector<std::string> joints;  ///< joints of RobotDescription::joint_names
+  double kp = 0.0;                  ///< [N m/rad] stiffness, >= 0
+  double kd = 0.0;                  ///< [N m s/rad] damping, >= 0
+};
+
 /// Everything that names or sizes one robot. Left before right in every pair; an optional pair
 /// (force-torque sensors, cameras) is two empty names when the robot has none.
 struct RobotDescription {
@@ -62,6 +72,8 @@ struct RobotDescription {
   std::string stand_keyframe;  ///< MJCF keyframe holding the standing posture
   /// The standing posture: these joints at these angles, every other joint at 0.
   std::vector<JointAngle> stand_pose;
+  /// Feedback gains by joint group; each joint in at most one group.
+  std::vector<JointGroup> joint_groups;
   /// The walking settings the robot walks with: foot size and distance, feasibility regions and
   /// CoM height (geometry()), timing and weights (generator()), the start (initial_state()).
   WalkingSettings<double> walking;
@@ -124,7 +136,51 @@ inline void validate(const RobotDescription& d) {
                      "each joint once", "'" + a.joint + "' twice");
     }
   }
+  for (std::size_t g = 0; g < d.joint_groups.size(); ++g) {
+    const JointGroup& group = d.joint_groups[g];
+    const std::string at = "RobotDescription.joint_groups: '" + group.name + "'";
+    check_argument(!group.name.empty() && !group.joints.empty(), at.c_str(),
+                   "a name and at least one joint", "an empty name or no joints");
+    check_argument(
+        std::isfinite(group.kp) && std::isfinite(group.kd) && group.kp >= 0.0 && group.kd >= 0.0,
+        at.c_str(), "finite gains kp, kd >= 0",
+        std::to_string(group.kp) + ", " + std::to_string(group.kd));
+    for (const std::string& joint : group.joints) {
+      bool known = false;
+      for (const std::string& j : d.joint_names) known = known || j == joint;
+      check_argument(known, at.c_str(), "joints of joint_names", "'" + joint + "'");
+      int times = 0;
+      for (const JointGroup& other : d.joint_groups) {
+        for (const std::string& j : other.joints) times += j == joint;
+      }
+      check_argument(times == 1, at.c_str(), "each joint in one group only",
+                     "'" + joint + "' " + std::to_string(times) + " times");
+    }
+  }
   validate(d.walking);
+}
+
+/// Feedback gains per joint, in joint_names order.
+struct JointGains {
+  Eigen::VectorXd kp;  ///< [N m/rad]; NaN for a joint in no group
+  Eigen::VectorXd kd;  ///< [N m s/rad]; NaN for a joint in no group
+};
+
+/// The gains of the description's joint groups over joint_names (NaN where a joint is in none).
+inline JointGains joint_gains(const RobotDescription& d) {
+  const auto n = static_cast<Eigen::Index>(d.joint_names.size());
+  JointGains gains{Eigen::VectorXd::Constant(n, std::nan("")),
+                   Eigen::VectorXd::Constant(n, std::nan(""))};
+  for (const JointGroup& group : d.joint_groups) {
+    for (const std::string& joint : group.joints) {
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (d.joint_names[static_cast<std::size_t>(i)] != joint) continue;
+        gains.kp[i] = group.kp;
+        gains.kd[i] = group.kd;
+      }
+    }
+  }
+  return gains;
 }
 
 /// The standing posture as a vector over `joint_names` (the order of the description, not of a

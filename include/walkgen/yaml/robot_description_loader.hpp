@@ -10,7 +10,8 @@
 ///   sole_frames (required), ft_sensor_frames, cameras: [left, right] frame or camera names;
 ///   ft_sensor_height [m] (with ft_sensor_frames); frames: {name: {body, xyz, rpy}} added to
 ///   bodies of the model (e.g. soles of a model without sites); stand_keyframe;
-///   stand_pose: {joint: angle [rad]}; walking_preset: hrp2 | heicub (default heicub), the
+///   stand_pose: {joint: angle [rad]}; joint_groups: {group: {joints: [..], kp, kd}} (feedback
+///   gains of a torque-controlled robot); walking_preset: hrp2 | heicub (default heicub), the
 ///   defaults of walking: {walking-settings keys of docs/yaml.md, flat or in sections}.
 /// Unknown keys, a missing required key and values of the wrong type are errors naming the key
 /// and the file's line; validate(RobotDescription) runs on the result.
@@ -69,6 +70,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
                                       "frames",
                                       "stand_keyframe",
                                       "stand_pose",
+                                      "joint_groups",
                                       "walking_preset",
                                       "walking"};
   std::string known;
@@ -154,6 +156,37 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
     for (const auto& kv : pose.node) {
       const std::string joint = text(pose.child(kv.first, ".<joint>"));
       d.stand_pose.push_back({joint, pose.child(kv.second, "." + joint).number<double>()});
+    }
+  }
+  if (root["joint_groups"]) {
+    const YamlValue groups = value("joint_groups");
+    groups.check(groups.node.IsMap(), "a map {group: {joints: [..], kp: .., kd: ..}}");
+    for (const auto& kv : groups.node) {
+      JointGroup group;
+      group.name = text(groups.child(kv.first, ".<group>"));
+      const YamlValue g = groups.child(kv.second, "." + group.name);
+      g.check(g.node.IsMap(), "a map {joints: [..], kp: [N m/rad], kd: [N m s/rad]}");
+      bool has_kp = false, has_kd = false;
+      for (const auto& field : g.node) {
+        const std::string k = field.first.Scalar();
+        const YamlValue fv = g.child(field.second, "." + k);
+        if (k == "joints") {
+          fv.check(fv.node.IsSequence() && fv.node.size() >= 1, "a list of joint names");
+          for (std::size_t i = 0; i < fv.node.size(); ++i) {
+            group.joints.push_back(text(fv.child(fv.node[i], "[" + std::to_string(i) + "]")));
+          }
+        } else if (k == "kp") {
+          group.kp = fv.number<double>();
+          has_kp = true;
+        } else if (k == "kd") {
+          group.kd = fv.number<double>();
+          has_kd = true;
+        } else {
+          check_argument(false, fv.where().c_str(), "joints, kp or kd", "an unknown key");
+        }
+      }
+      g.check(!group.joints.empty() && has_kp && has_kd, "a map with joints, kp and kd");
+      d.joint_groups.push_back(group);
     }
   }
   std::string preset = "heicub";
