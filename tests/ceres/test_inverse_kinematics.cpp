@@ -363,6 +363,47 @@ TEST(CeresInverseKinematics, BadInputThrows) {
   EXPECT_EQ(ik.q()[tree().joint_index("l_knee")], 0.0);
 }
 
+// Held joints (CeresIkSettings::held_joints) keep their initial-guess angles exactly, through
+// a cold multi-start solve whose restarts move every other joint, while the targets are met;
+// an unknown name is an error naming the setting and the joint.
+TEST(CeresInverseKinematics, HeldJointsKeepTheirGuess) {
+  walkgen::CeresIkSettings s;
+  s.held_joints = {"torso_pitch", "torso_roll", "torso_yaw"};
+  s.num_steps = 7;  // too few from the far guess below: restarts follow
+  HumanoidIk ik(tree(), s);
+  walkgen::start_standing(ik, Eigen::Vector3d(0, 0.07, 0));
+  const Eigen::VectorXd guess = ik.q();
+  auto ws = tree().make_workspace();
+  tree().forward_kinematics(ik.base_position_W(), ik.base_rotation_W(), guess, ws);
+  IkTarget target;
+  target.com_W = tree().center_of_mass(ws) + Eigen::Vector3d(0.02, 0.03, -0.02);
+  target.left_foot = {ws.position_W(tree().link_index("l_sole")), 0.0};
+  target.right_foot = {ws.position_W(tree().link_index("r_sole")) + Eigen::Vector3d(0.05, 0, 0.03),
+                       0.0};
+  target.hold_upright(0.0);
+  // A guess far from the solution (one knee bent to 2.2 rad, the other straight).
+  Eigen::VectorXd far = guess;
+  for (const char* j : {"l_hip_pitch", "l_knee", "l_ankle_pitch", "r_knee"}) {
+    far[tree().joint_index(j)] = 0.0;
+  }
+  far[tree().joint_index("l_knee")] = 2.2;
+  ik.set_initial_guess(ik.base_position_W(), ik.base_rotation_W(), far);
+  const walkgen::IkResult r = ik.solve(target);
+  ASSERT_EQ(r.status, IkStatus::converged) << max_error(r);
+  EXPECT_GE(r.runs, 2);  // restarts ran
+  for (const std::string& j : s.held_joints) {
+    EXPECT_EQ(ik.q()[tree().joint_index(j)], far[tree().joint_index(j)]) << j;
+  }
+  tree().forward_kinematics(ik.base_position_W(), ik.base_rotation_W(), ik.q(), ws);
+  EXPECT_LE((tree().center_of_mass(ws) - target.com_W).norm(), 1e-6);
+  EXPECT_LE((ws.position_W(tree().link_index("r_sole")) - target.right_foot.position_W).norm(),
+            1e-6);
+
+  s.held_joints = {"l_knee", "elbow"};
+  walkgen_test::expect_invalid_argument([&] { HumanoidIk bad(tree(), s); },
+                                        {"CeresIkSettings.held_joints", "'elbow'"});
+}
+
 // validate(CeresIkSettings) names each field of its own and of IkResidualSettings.
 TEST(CeresInverseKinematics, SettingsAreValidatedNamingTheField) {
   using S = walkgen::CeresIkSettings;

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/SVD>
+
 #include "walkgen/ceres/inverse_kinematics.hpp"
 #include "walkgen/mujoco/robot_model.hpp"
 #include "walkgen/yaml/robot_description_loader.hpp"
@@ -77,7 +79,50 @@ TEST(RobotInverseKinematics, UnitreeG1ReachesCentreOfMassAndFootTargets) {
     // Within the joint limits.
     EXPECT_TRUE((ik.q().array() >= tree.lower_limits().array() - 1e-12).all()) << c.what;
     EXPECT_TRUE((ik.q().array() <= tree.upper_limits().array() + 1e-12).all()) << c.what;
+    // The arms (a held group) stay exactly at the stand pose.
+    for (const std::string& j : walkgen::ceres_ik_settings(robot).held_joints) {
+      EXPECT_EQ(ik.q()[tree.joint_index(j)], s.q[tree.joint_index(j)]) << c.what << ": " << j;
+    }
   }
+}
+
+// Why the arms are held: with all 23 joints free the G1's 21 residuals leave 8 directions of
+// the 29 unknowns unconstrained, JᵀJ is singular and Ceres' Cholesky fails whenever LM's damping
+// is small (the warm solves of a walk). With the 10 arm joints held the 19 free columns have
+// full rank.
+TEST(RobotInverseKinematics, UnitreeG1HeldArmsMakeTheJacobianFullRank) {
+  const walkgen::RobotDescription robot = walkgen::find_robot_description("unitree_g1");
+  const walkgen::KinematicTree<double> tree = walkgen::robot_kinematic_tree_from_mjcf(robot);
+  const Stand s = stand(tree, robot);
+  const walkgen::CeresIkSettings settings = walkgen::ceres_ik_settings(robot);
+  ASSERT_EQ(settings.held_joints.size(), 10u);
+  walkgen::CeresInverseKinematics<> ik(tree, settings);
+  walkgen::IkTarget target;
+  target.com_W = s.com;
+  target.left_foot = {s.left, 0.0};
+  target.right_foot = {s.right, 0.0};
+  target.hold_upright(0.0);
+  Eigen::VectorXd x(6 + tree.num_joints()), r;
+  x << s.base, Eigen::Vector3d::Zero(), s.q;
+  Eigen::MatrixXd J;
+  ik.set_initial_guess(s.base, Eigen::Matrix3d::Identity(), s.q);
+  ik.residual_and_jacobian(target, x, r, J);
+  Eigen::MatrixXd free(J.rows(), 0);
+  for (Eigen::Index c = 0; c < J.cols(); ++c) {
+    bool held = false;
+    for (const std::string& j : settings.held_joints) held = held || c == 6 + tree.joint_index(j);
+    if (held) continue;
+    free.conservativeResize(Eigen::NoChange, free.cols() + 1);
+    free.col(free.cols() - 1) = J.col(c);
+  }
+  ASSERT_EQ(free.cols(), 19);
+  const auto rank = [](const Eigen::MatrixXd& m) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(m);
+    svd.setThreshold(1e-9);
+    return svd.rank();
+  };
+  EXPECT_EQ(rank(free), 19);
+  EXPECT_LT(rank(J), J.cols());  // all joints free: rank-deficient
 }
 
 // Warm-started as in the walking loop: the CoM moves 60 % of the way from the middle towards the

@@ -67,6 +67,10 @@ TEST(RobotDescriptionFile, G1FileLoadsWithItsFramesAndGeometry) {
   EXPECT_EQ(gains.kp[3], 200.0);  // left_knee_joint
   EXPECT_EQ(gains.kd[3], 5.0);
   EXPECT_EQ(gains.kp[13], 40.0);  // left_shoulder_pitch_joint
+  // The arms are held at the stand pose (the IK leaves them out); legs and waist are not.
+  for (const walkgen::JointGroup& group : g1.joint_groups) {
+    EXPECT_EQ(group.held, group.name == "arms") << group.name;
+  }
   // walking_preset hrp2 under the file's keys.
   EXPECT_EQ(g1.walking.t_step, walkgen::hrp2_settings().t_step);
   EXPECT_EQ(g1.walking.foot_length, 0.17);
@@ -103,7 +107,9 @@ TEST(RobotDescriptionFile, ErrorsNameTheKey) {
   bad(kMinimal + "joint_groups: {legs: {joints: [hip], kp: 100}}\n",
       {"joint_groups.legs", "joints, kp and kd"});
   bad(kMinimal + "joint_groups: {legs: {joints: [hip], kp: 100, kd: 1, ki: 3}}\n",
-      {"joint_groups.legs.ki", "joints, kp or kd"});
+      {"joint_groups.legs.ki", "joints, kp, kd or held"});
+  bad(kMinimal + "joint_groups: {legs: {joints: [hip], kp: 100, kd: 1, held: maybe}}\n",
+      {"joint_groups.legs.held", "true or false", "maybe"});
   bad(kMinimal + "joint_groups: {legs: {joints: [hip, ankle], kp: 100, kd: 1}}\n",
       {"joint_groups: 'legs'", "'ankle'"});
   bad(kMinimal +

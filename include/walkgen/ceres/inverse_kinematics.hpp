@@ -31,7 +31,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <type_traits>
+#include <vector>
 
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
@@ -90,6 +92,11 @@ struct CeresIkSettings : IkResidualSettings {
   /// give the same LM iterates up to round-off; analytic is about 20 times faster per solve.
   IkDerivatives derivatives = IkDerivatives::analytic;
 
+  /// Joints held at their initial-guess angles (set_initial_guess()): Ceres leaves them out of
+  /// the unknowns (a ceres::SubsetManifold), so e.g. a humanoid's arms stay where they hang
+  /// instead of swinging to place the CoM. Names of KinematicTree::joint_names().
+  std::vector<std::string> held_joints;
+
   /// A solve converges when every error of IkResult is at most these.
   double position_tolerance = 1e-6;     ///< [m]
   double orientation_tolerance = 1e-6;  ///< [rad]
@@ -107,13 +114,17 @@ inline void validate(const CeresIkSettings& s) {
   check_positive("CeresIkSettings.orientation_tolerance", s.orientation_tolerance);
 }
 
-/// The IK settings of `robot`: its sole frames, and its torso body held upright (the base when
-/// it names none); the rest at their defaults.
+/// The IK settings of `robot`: its sole frames, its torso body held upright (the base when it
+/// names none) and the joints of its `held` joint groups held; the rest at their defaults.
 inline CeresIkSettings ceres_ik_settings(const RobotDescription& robot) {
   CeresIkSettings s;
   s.left_foot_link = robot.sole_frames[0];
   s.right_foot_link = robot.sole_frames[1];
   s.torso_link = robot.torso_body.empty() ? robot.base_body : robot.torso_body;
+  for (const JointGroup& group : robot.joint_groups) {
+    if (group.held)
+      s.held_joints.insert(s.held_joints.end(), group.joints.begin(), group.joints.end());
+  }
   return s;
 }
 
@@ -138,8 +149,8 @@ class CeresInverseKinematics {
   /// Builds the solver on `tree` (a copy, plus one on ceres::Jet) and sets the initial guess to
   /// the base at the origin, upright, and q = 0 clamped into the joint limits; callers set a
   /// standing posture with set_initial_guess().
-  /// @throws walkgen::invalid_argument for bad settings (validate()), a link name the tree
-  /// lacks, or a tree whose joint count differs from NumJoints.
+  /// @throws walkgen::invalid_argument for bad settings (validate()), a link or held joint name
+  /// the tree lacks, or a tree whose joint count differs from NumJoints.
   explicit CeresInverseKinematics(const KinematicTree<double>& tree,
                                   const CeresIkSettings& settings = CeresIkSettings())
       : settings_(settings),
@@ -168,6 +179,20 @@ class CeresInverseKinematics {
     for (int i = 0; i < n; ++i) {
       if (std::isfinite(lower_[i])) problem_.SetParameterLowerBound(x_.data(), 6 + i, lower_[i]);
       if (std::isfinite(upper_[i])) problem_.SetParameterUpperBound(x_.data(), 6 + i, upper_[i]);
+    }
+    held_ = Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(n, false);
+    std::vector<int> constant;
+    for (const std::string& name : settings.held_joints) {
+      const auto& names = tree.joint_names();
+      const auto it = std::find(names.begin(), names.end(), name);
+      check_argument(it != names.end(), "CeresIkSettings.held_joints",
+                     "joints of the tree (see KinematicTree::joint_names())", "'" + name + "'");
+      const int i = static_cast<int>(it - names.begin());
+      if (!held_[i]) constant.push_back(6 + i);
+      held_[i] = true;
+    }
+    if (!constant.empty()) {
+      problem_.SetManifold(x_.data(), new ceres::SubsetManifold(6 + n, constant));
     }
     options_.minimizer_type = ceres::TRUST_REGION;
     options_.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
@@ -366,6 +391,7 @@ class CeresInverseKinematics {
     unsigned state = 2654435761u * unsigned(run);
     for (Eigen::Index i = 0; i < q.size() && run > 0; ++i) {
       state = state * 1664525u + 1013904223u;
+      if (held_[i]) continue;
       const double u = double(state >> 8) / double(1u << 24);  // [0, 1)
       const double lo = std::isfinite(lower_[i]) ? lower_[i] : q[i] - kPi;
       const double hi = std::isfinite(upper_[i]) ? upper_[i] : q[i] + kPi;
@@ -415,6 +441,7 @@ class CeresInverseKinematics {
   Eigen::VectorXd x_, lower_, upper_, q_, guess_q_;
   Eigen::Vector3d base_position_, guess_position_;
   Eigen::Matrix3d base_rotation_, guess_rotation_;
+  Eigen::Array<bool, Eigen::Dynamic, 1> held_;  ///< per joint: held at its guess
   bool warm_ = false;
   double warm_radius_ = 1.0;  ///< initial trust region radius of the next warm solve
 };

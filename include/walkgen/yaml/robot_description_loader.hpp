@@ -10,9 +10,10 @@
 ///   sole_frames (required), ft_sensor_frames, cameras: [left, right] frame or camera names;
 ///   ft_sensor_height [m] (with ft_sensor_frames); frames: {name: {body, xyz, rpy}} added to
 ///   bodies of the model (e.g. soles of a model without sites); stand_keyframe;
-///   stand_pose: {joint: angle [rad]}; joint_groups: {group: {joints: [..], kp, kd}} (feedback
-///   gains of a torque-controlled robot); walking_preset: hrp2 | heicub (default heicub), the
-///   defaults of walking: {walking-settings keys of docs/yaml.md, flat or in sections}.
+///   stand_pose: {joint: angle [rad]}; joint_groups: {group: {joints: [..], kp, kd, held}}
+///   (feedback gains of a torque-controlled robot; held: true keeps the group at its stand pose);
+///   walking_preset: hrp2 | heicub (default heicub), the defaults of walking: {walking-settings
+///   keys of docs/yaml.md, flat or in sections}.
 /// Unknown keys, a missing required key and values of the wrong type are errors naming the key
 /// and the file's line; validate(RobotDescription) runs on the result.
 
@@ -181,8 +182,10 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
         } else if (k == "kd") {
           group.kd = fv.number<double>();
           has_kd = true;
+        } else if (k == "held") {
+          fv.read(group.held);
         } else {
-          check_argument(false, fv.where().c_str(), "joints, kp or kd", "an unknown key");
+          check_argument(false, fv.where().c_str(), "joints, kp, kd or held", "an unknown key");
         }
       }
       g.check(!group.joints.empty() && has_kp && has_kd, "a map with joints, kp and kd");
