@@ -360,7 +360,8 @@ int main(int argc, char** argv) {
 
   std::ofstream summary(out_dir + "/simulation_summary.csv");
   summary << "task,reached,final_distance,time,zmp_distance_mean,zmp_distance_std,"
-             "zmp_inside_fraction,min_base_height,min_obstacle_distance,qp_failures,ik_failures\n";
+             "zmp_inside_fraction,min_base_height,min_obstacle_distance,qp_failures,ik_failures,"
+             "fallen,mean_speed\n";
   int failures = 0;
   bool files_ok = true;
   for (const auto& task : walkgen::section_9_2_tasks(scale)) {
@@ -417,18 +418,19 @@ int main(int argc, char** argv) {
     std::printf(
         "  %s: %s after %.1f s, true CoM %.3f m from the target; measured vs NMPC ZMP %.2f ± %.2f "
         "cm; true ZMP in the support polygon in %.2f %% of %zu samples; lowest base %.3f m; "
-        "QP failures %d, IK failures %d%s\n",
+        "mean speed %.3f m/s; QP failures %d, IK failures %d%s\n",
         task.name.c_str(), result.reached ? "reached" : "NOT reached", result.time,
         result.final_distance, 100.0 * mean, 100.0 * sd, 100.0 * result.inside_fraction(),
-        result.rows.size(), result.min_base_height, result.qp_failures, result.ik_failures,
-        result.message.empty() ? "" : (" — " + result.message).c_str());
+        result.rows.size(), result.min_base_height, result.mean_speed(), result.qp_failures,
+        result.ik_failures, result.message.empty() ? "" : (" — " + result.message).c_str());
     failures += !result.reached;
     write_rows(out_dir + "/" + task.name + ".csv", result);
     summary << task.name << ',' << int(result.reached) << ',' << result.final_distance << ','
             << result.time << ',' << mean << ',' << sd << ',' << result.inside_fraction() << ','
             << result.min_base_height << ','
             << (task.obstacles.empty() ? 0.0 : result.min_obstacle_distance) << ','
-            << result.qp_failures << ',' << result.ik_failures << '\n';
+            << result.qp_failures << ',' << result.ik_failures << ',' << int(result.fallen()) << ','
+            << result.mean_speed() << '\n';
     std::ofstream scene(out_dir + "/" + task.name + "_scene.csv");
     scene << "kind,x,y,radius,margin\ntarget," << task.target.x() << ',' << task.target.y()
           << ",0.05,0\n";

@@ -38,12 +38,16 @@ def distance(r):
 start, end = distance(rows[0]), distance(rows[-1])
 with open(f"{sim}/simulation_summary.csv") as f:
     summary = {r["task"]: r for r in csv.DictReader(f)}
-reached = summary.get("straight", {}).get("reached") == "1"
+straight = summary.get("straight", {})
+reached = straight.get("reached") == "1"
 print(f"readme_demo: true CoM {start:.3f} m from the target at the start, {end:.3f} m at the end "
       f"after {rows[-1]['time']} s; reached: {reached}")
 if not start - end >= 0.1:
     sys.exit("readme_demo: the robot did not walk toward the target (expected at least 0.1 m closer)")
 if not reached:
     sys.exit("readme_demo: simulation_summary.csv does not say the straight task was reached")
+if straight.get("fallen") != "0" or not float(straight.get("mean_speed", "0")) > 0.0:
+    sys.exit(f"readme_demo: simulation_summary.csv says fallen={straight.get('fallen')}, "
+             f"mean_speed={straight.get('mean_speed')} for the straight task")
 PY
 echo "readme_demo: passed"

@@ -52,10 +52,17 @@ TEST_P(Section92Task, ReachesTheTargetWithoutFallingAndKeepsTheZmpInTheSupportPo
   RecordProperty("zmp_distance_mean_cm", std::to_string(100.0 * mean));
   RecordProperty("zmp_distance_std_cm", std::to_string(100.0 * sd));
   RecordProperty("zmp_inside_fraction", std::to_string(r.inside_fraction()));
-  std::printf("%s: %.1f s, %.3f m from the target, ZMP distance %.2f ± %.2f cm, inside %.2f %%\n",
-              task.name.c_str(), r.time, r.final_distance, 100.0 * mean, 100.0 * sd,
-              100.0 * r.inside_fraction());
+  RecordProperty("mean_speed_m_s", std::to_string(r.mean_speed()));
+  std::printf(
+      "%s: %.1f s, %.3f m from the target, ZMP distance %.2f ± %.2f cm, inside %.2f %%, mean speed "
+      "%.4f m/s (planned %.4f)\n",
+      task.name.c_str(), r.time, r.final_distance, 100.0 * mean, 100.0 * sd,
+      100.0 * r.inside_fraction(), r.mean_speed(), r.planned_mean_speed());
   EXPECT_EQ(r.status, LoopStatus::ok) << r.message;
+  EXPECT_FALSE(r.fallen());
+  // The robot made the plan's progress: the true CoM's net speed is the planned CoM's.
+  EXPECT_GT(r.planned_mean_speed(), 0.005);
+  EXPECT_NEAR(r.mean_speed(), r.planned_mean_speed(), 0.05 * r.planned_mean_speed());
   EXPECT_TRUE(r.stopped) << "the steering never reported the target reached in " << task.time_limit
                          << " s";
   EXPECT_LE(r.final_distance, walkgen::kTaskReachDistance);

@@ -138,6 +138,15 @@ struct TaskResult {
     mean = n > 0 ? s / double(n) : 0.0;
     stddev = n > 1 ? std::sqrt(std::max(0.0, s2 / double(n) - mean * mean)) : 0.0;
   }
+  /// The robot fell (the loop stopped with LoopStatus::fallen).
+  bool fallen() const { return status == LoopStatus::fallen; }
+  /// [m/s] Mean speed over the task: the true CoM's displacement from the first row to the
+  /// last over the time between them (the net progress; the sway of the steps cancels out).
+  /// 0 with fewer than two rows.
+  double mean_speed() const { return net_speed(&TaskRow::com_true); }
+  /// [m/s] The same for the planned CoM.
+  double planned_mean_speed() const { return net_speed(&TaskRow::com_plan); }
+
   /// Fraction of the samples with a valid measurement whose true ZMP is in the true polygon.
   double inside_fraction() const {
     long n = 0, in = 0;
@@ -147,6 +156,13 @@ struct TaskResult {
       in += r.support_margin >= 0.0;
     }
     return n > 0 ? double(in) / double(n) : 0.0;
+  }
+
+ private:
+  double net_speed(Eigen::Vector2d TaskRow::*com) const {
+    if (rows.size() < 2) return 0.0;
+    const double dt = rows.back().time - rows.front().time;
+    return dt > 0.0 ? (rows.back().*com - rows.front().*com).norm() / dt : 0.0;
   }
 };
 
