@@ -81,8 +81,7 @@ Eigen::Vector3d stand(const walkgen::RobotDescription& robot, const mjModel* m, 
     mj_resetDataKeyframe(m, d, key);
   } else {
     const walkgen::KinematicTree<double> tree = walkgen::robot_kinematic_tree_from_mjcf(robot);
-    Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
-    for (const auto& a : robot.stand_pose) q[tree.joint_index(a.joint)] = a.angle;
+    const Eigen::VectorXd q = walkgen::stand_configuration(tree, robot);
     auto ws = tree.make_workspace();
     tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q, ws);
     const double lowest = std::min(ws.position_W(tree.link_index(robot.sole_frames[0])).z(),

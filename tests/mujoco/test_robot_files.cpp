@@ -26,8 +26,7 @@ struct Stance {
 // Forward kinematics of the stand pose with an upright base at the origin.
 Stance stance(const RobotDescription& robot) {
   const walkgen::KinematicTree<double> tree = walkgen::robot_kinematic_tree_from_mjcf(robot);
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
-  for (const auto& a : robot.stand_pose) q[tree.joint_index(a.joint)] = a.angle;
+  const Eigen::VectorXd q = walkgen::stand_configuration(tree, robot);
   auto ws = tree.make_workspace();
   tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), q, ws);
   Stance s;

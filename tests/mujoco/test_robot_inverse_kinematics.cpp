@@ -22,8 +22,7 @@ struct Stand {
 
 Stand stand(const walkgen::KinematicTree<double>& tree, const walkgen::RobotDescription& robot) {
   Stand s;
-  s.q = Eigen::VectorXd::Zero(tree.num_joints());
-  for (const auto& a : robot.stand_pose) s.q[tree.joint_index(a.joint)] = a.angle;
+  s.q = walkgen::stand_configuration(tree, robot);
   auto ws = tree.make_workspace();
   tree.forward_kinematics(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), s.q, ws);
   // Base placed so that the soles are on the floor (z = 0).

@@ -33,18 +33,6 @@ inline KinematicTree<double> humanoid_tree(
   return kinematic_tree_from_urdf_file(robot.urdf_path);
 }
 
-/// `robot`'s standing posture (RobotDescription::stand_pose; walkgen's humanoid: the MJCF
-/// keyframe "stand", hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad, soles flat) in the joint
-/// order of `tree`, every other joint 0.
-/// @throws walkgen::invalid_argument when `tree` lacks one of the posture's joints.
-inline Eigen::VectorXd stand_configuration(
-    const KinematicTree<double>& tree,
-    const RobotDescription& robot = walkgen_humanoid_description()) {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
-  for (const JointAngle& a : robot.stand_pose) q[tree.joint_index(a.joint)] = a.angle;
-  return q;
-}
-
 /// The root position [m] that puts the standing robot's left sole at `left_sole_W` (upright
 /// base).
 inline Eigen::Vector3d stand_base_position(

@@ -187,7 +187,7 @@ inline JointGains joint_gains(const RobotDescription& d) {
 }
 
 /// The standing posture as a vector over `joint_names` (the order of the description, not of a
-/// model; see stand_configuration() in walkgen/humanoid/humanoid_ik.hpp for a tree's order).
+/// model; see stand_configuration() below for a tree's order).
 inline std::vector<double> stand_angles(const RobotDescription& d) {
   std::vector<double> q(d.joint_names.size(), 0.0);
   for (const JointAngle& a : d.stand_pose) {
@@ -224,6 +224,19 @@ inline RobotDescription walkgen_humanoid_description() {
   }
   d.walking = heicub_settings<double>();
   return d;
+}
+
+/// `robot`'s standing posture (RobotDescription::stand_pose; walkgen's humanoid: the MJCF
+/// keyframe "stand", hip pitch −0.5, knee 1.0, ankle pitch −0.5 rad, soles flat) in the joint
+/// order of `tree` (a KinematicTree, or anything with num_joints() and joint_index()), every
+/// other joint 0.
+/// @throws walkgen::invalid_argument when `tree` lacks one of the posture's joints.
+template <typename Tree>
+Eigen::VectorXd stand_configuration(
+    const Tree& tree, const RobotDescription& robot = walkgen_humanoid_description()) {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(tree.num_joints());
+  for (const JointAngle& a : robot.stand_pose) q[tree.joint_index(a.joint)] = a.angle;
+  return q;
 }
 
 }  // namespace walkgen
