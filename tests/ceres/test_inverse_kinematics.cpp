@@ -364,11 +364,13 @@ TEST(CeresInverseKinematics, BadInputThrows) {
 }
 
 // Held joints (CeresIkSettings::held_joints) keep their initial-guess angles exactly, through
-// a cold multi-start solve whose restarts move every other joint, while the targets are met;
-// an unknown name is an error naming the setting and the joint.
+// a cold multi-start solve whose restarts move every other joint, while the targets are met
+// around them (the torso turned 0.1 rad on its held yaw joint, where a free solve would
+// untwist it); a joint named twice is held once; every joint held leaves the base to move; an
+// unknown name is an error naming the setting and the joint.
 TEST(CeresInverseKinematics, HeldJointsKeepTheirGuess) {
   walkgen::CeresIkSettings s;
-  s.held_joints = {"torso_pitch", "torso_roll", "torso_yaw"};
+  s.held_joints = {"torso_pitch", "torso_roll", "torso_yaw", "torso_yaw"};
   s.num_steps = 7;  // too few from the far guess below: restarts follow
   HumanoidIk ik(tree(), s);
   walkgen::start_standing(ik, Eigen::Vector3d(0, 0.07, 0));
@@ -381,8 +383,11 @@ TEST(CeresInverseKinematics, HeldJointsKeepTheirGuess) {
   target.right_foot = {ws.position_W(tree().link_index("r_sole")) + Eigen::Vector3d(0.05, 0, 0.03),
                        0.0};
   target.hold_upright(0.0);
-  // A guess far from the solution (one knee bent to 2.2 rad, the other straight).
+  target.torso_rotation_W = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  // A guess far from the solution (one knee bent to 2.2 rad, the other straight), the torso
+  // turned by the 0.1 rad its target asks.
   Eigen::VectorXd far = guess;
+  far[tree().joint_index("torso_yaw")] = 0.1;
   for (const char* j : {"l_hip_pitch", "l_knee", "l_ankle_pitch", "r_knee"}) {
     far[tree().joint_index(j)] = 0.0;
   }
@@ -398,6 +403,22 @@ TEST(CeresInverseKinematics, HeldJointsKeepTheirGuess) {
   EXPECT_LE((tree().center_of_mass(ws) - target.com_W).norm(), 1e-6);
   EXPECT_LE((ws.position_W(tree().link_index("r_sole")) - target.right_foot.position_W).norm(),
             1e-6);
+
+  // Every joint held: only the base moves; a CoM shift along x is reached by moving it.
+  s.held_joints = tree().joint_names();
+  HumanoidIk rigid(tree(), s);
+  walkgen::start_standing(rigid, Eigen::Vector3d(0, 0.07, 0));
+  const Eigen::VectorXd stand = rigid.q();
+  tree().forward_kinematics(rigid.base_position_W(), rigid.base_rotation_W(), stand, ws);
+  IkTarget shifted;
+  shifted.com_W = tree().center_of_mass(ws) + Eigen::Vector3d(0.01, 0.0, 0.0);
+  shifted.left_foot = {ws.position_W(tree().link_index("l_sole")) + Eigen::Vector3d(0.01, 0, 0),
+                       0.0};
+  shifted.right_foot = {ws.position_W(tree().link_index("r_sole")) + Eigen::Vector3d(0.01, 0, 0),
+                        0.0};
+  shifted.hold_upright(0.0);
+  ASSERT_EQ(rigid.solve(shifted).status, IkStatus::converged);
+  EXPECT_EQ(rigid.q(), stand);
 
   s.held_joints = {"l_knee", "elbow"};
   walkgen_test::expect_invalid_argument([&] { HumanoidIk bad(tree(), s); },

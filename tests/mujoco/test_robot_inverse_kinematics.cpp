@@ -3,11 +3,10 @@
 // foot targets around its stance, and its solution is checked with forward kinematics.
 #include <gtest/gtest.h>
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <string>
-
-#include <Eigen/SVD>
 
 #include "walkgen/ceres/inverse_kinematics.hpp"
 #include "walkgen/mujoco/robot_model.hpp"
@@ -85,10 +84,11 @@ TEST(RobotInverseKinematics, UnitreeG1ReachesCentreOfMassAndFootTargets) {
   }
 }
 
-// Why the arms are held: with all 23 joints free the G1's 21 residuals leave 8 directions of
-// the 29 unknowns unconstrained, JᵀJ is singular and Ceres' Cholesky fails whenever LM's damping
-// is small (the warm solves of a walk). With the 10 arm joints held the 19 free columns have
-// full rank.
+// Why the arms are held: the G1's 21 residuals have rank 19 (with the waist's single yaw joint
+// the torso's roll and pitch targets repeat the pelvis's), and the 10 arm columns add no
+// direction to the 19 the base, legs and waist span: with all 23 joints free, J (21 × 29) has
+// rank 19, JᵀJ a 10-dimensional null space, and Ceres' Cholesky fails whenever LM's damping is
+// small (warm solves). With the arms held the 19 free columns have full rank.
 TEST(RobotInverseKinematics, UnitreeG1HeldArmsMakeTheJacobianFullRank) {
   const walkgen::RobotDescription robot = walkgen::find_robot_description("unitree_g1");
   const walkgen::KinematicTree<double> tree = walkgen::robot_kinematic_tree_from_mjcf(robot);
@@ -121,7 +121,7 @@ TEST(RobotInverseKinematics, UnitreeG1HeldArmsMakeTheJacobianFullRank) {
     return svd.rank();
   };
   EXPECT_EQ(rank(free), 19);
-  EXPECT_LT(rank(J), J.cols());  // all joints free: rank-deficient
+  EXPECT_EQ(rank(J), 19);  // 29 columns: 10 null directions
 }
 
 // Warm-started as in the walking loop: the CoM moves 60 % of the way from the middle towards the
@@ -156,6 +156,10 @@ TEST(RobotInverseKinematics, UnitreeG1FollowsAWeightShiftWarmStarted) {
   }
   EXPECT_EQ(failures, 0);
   EXPECT_LE(worst_com, 1e-6);
+  // Through 401 warm solves the held arms never moved.
+  for (const std::string& j : walkgen::ceres_ik_settings(robot).held_joints) {
+    EXPECT_EQ(ik.q()[tree.joint_index(j)], s.q[tree.joint_index(j)]) << j;
+  }
 }
 
 }  // namespace

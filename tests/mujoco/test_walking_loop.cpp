@@ -37,6 +37,31 @@ struct OtherRobot final : walkgen::Robot {
   walkgen::StereoImages images_;
 };
 
+// TaskResult::mean_speed(): the net displacement of the true CoM over the time between the
+// first and the last row; 0 without two rows or without time between them.
+TEST(TaskResult, MeanSpeedIsTheNetDisplacementOverTheTime) {
+  TaskResult r;
+  EXPECT_EQ(r.mean_speed(), 0.0);
+  walkgen::TaskRow row;
+  row.time = 1.0;
+  r.rows.push_back(row);
+  EXPECT_EQ(r.mean_speed(), 0.0);
+  r.rows.push_back(row);  // no time between the rows
+  EXPECT_EQ(r.mean_speed(), 0.0);
+  row.time = 2.0;
+  row.com_true = Eigen::Vector2d(0.5, -0.2);  // a sway in between does not count
+  r.rows.push_back(row);
+  row.time = 3.0;
+  row.com_true = Eigen::Vector2d(0.3, 0.4);
+  row.com_plan = Eigen::Vector2d(0.6, 0.8);
+  r.rows.push_back(row);
+  EXPECT_DOUBLE_EQ(r.mean_speed(), 0.25);
+  EXPECT_DOUBLE_EQ(r.planned_mean_speed(), 0.5);
+  EXPECT_FALSE(r.fallen());
+  r.status = LoopStatus::fallen;
+  EXPECT_TRUE(r.fallen());
+}
+
 class Section92Task : public ::testing::TestWithParam<int> {};
 
 // Acceptance: each task reaches within 0.25 m of its target without a fall (base above 80 % of

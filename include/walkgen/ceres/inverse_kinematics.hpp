@@ -26,6 +26,7 @@
 /// unconverged solve IkStatus::not_converged, both keeping the previous solution.
 
 #include <ceres/ceres.h>
+#include <ceres/version.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -41,6 +42,10 @@
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 #include "walkgen/robot/robot_description.hpp"
+
+#if CERES_VERSION_MAJOR < 2 || (CERES_VERSION_MAJOR == 2 && CERES_VERSION_MINOR < 1)
+#error "walkgen/ceres/inverse_kinematics.hpp needs Ceres >= 2.1 (ceres::SubsetManifold)"
+#endif
 
 namespace walkgen {
 
@@ -71,10 +76,10 @@ constexpr const char* to_string(IkDerivatives derivatives) noexcept {
 struct CeresIkSettings : IkResidualSettings {
   /// `n_init`: Ceres runs a cold solve may take (the first solve, or the first after
   /// set_initial_guess()). Run 1 starts from the initial guess; run k > 1 restarts from the
-  /// initial guess with the joints moved a deterministic pseudo-random part of the way towards
-  /// a point inside their limits, so a start in a poor basin is left behind. A warm-started solve
-  /// (a previous solve converged) runs once. Effect: more robustness to bad initial guesses for
-  /// up to n_init times the cost.
+  /// initial guess with the free joints (all but held_joints) moved a deterministic pseudo-random
+  /// part of the way towards a point inside their limits, so a start in a poor basin is left
+  /// behind. A warm-started solve (a previous solve converged) runs once. Effect: more robustness
+  /// to bad initial guesses for up to n_init times the cost.
   int n_init = 10;
   /// `step_tol`: Ceres' parameter_tolerance, a run stops when the step is smaller than
   /// step_tol·(|x| + step_tol). Ceres' gradient_tolerance is step_tol·1e2, its function_tolerance
@@ -122,8 +127,9 @@ inline CeresIkSettings ceres_ik_settings(const RobotDescription& robot) {
   s.right_foot_link = robot.sole_frames[1];
   s.torso_link = robot.torso_body.empty() ? robot.base_body : robot.torso_body;
   for (const JointGroup& group : robot.joint_groups) {
-    if (group.held)
+    if (group.held) {
       s.held_joints.insert(s.held_joints.end(), group.joints.begin(), group.joints.end());
+    }
   }
   return s;
 }
@@ -182,8 +188,8 @@ class CeresInverseKinematics {
     }
     held_ = Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(n, false);
     std::vector<int> constant;
+    const auto& names = tree.joint_names();
     for (const std::string& name : settings.held_joints) {
-      const auto& names = tree.joint_names();
       const auto it = std::find(names.begin(), names.end(), name);
       check_argument(it != names.end(), "CeresIkSettings.held_joints",
                      "joints of the tree (see KinematicTree::joint_names())", "'" + name + "'");
@@ -294,7 +300,8 @@ class CeresInverseKinematics {
 
   /// The weighted residual (21) and its Jacobian d r / d x (21 × (6 + joints)) for `target` at
   /// the unknowns x = (base position in W, rotation vector δ of the base relative to
-  /// base_rotation_W(), q), computed as Ceres sees them with settings().derivatives. For tests
+  /// base_rotation_W(), q), computed with settings().derivatives; the columns of held joints
+  /// are included (Ceres' manifold drops them). For tests
   /// and diagnostics; the solution is not changed.
   /// @throws walkgen::invalid_argument for an x of the wrong size or a non-finite target or x.
   void residual_and_jacobian(const IkTarget& target, const Eigen::VectorXd& x,
@@ -369,9 +376,9 @@ class CeresInverseKinematics {
   }
 
   /// Sets x_ to the start of run `run`. Run 0 starts from the current solution. Restarts move
-  /// the joints towards a pseudo-random point inside their limits: odd runs 20 % of the way from
-  /// where the previous run ended (to leave a point stuck at a bound), even runs from the initial
-  /// guess, farther each time (to leave a poor basin).
+  /// the free joints (held ones keep their guess) towards a pseudo-random point inside their
+  /// limits: odd runs 20 % of the way from where the previous run ended (to leave a point stuck at
+  /// a bound), even runs from the initial guess, farther each time (to leave a poor basin).
   void start_run(int run) {
     Eigen::VectorXd q = q_;
     Eigen::Vector3d p = base_position_;

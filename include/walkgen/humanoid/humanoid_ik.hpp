@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// walkgen's humanoid (models/: 15 joints, Heicub-like; walkgen_humanoid_description()) for
-/// inverse kinematics: its kinematic tree from the URDF, its standing posture, and HumanoidIk, the
+/// inverse kinematics: its kinematic tree from the URDF, the base placement of its standing
+/// posture (stand_configuration() in walkgen/robot/robot_description.hpp), and HumanoidIk, the
 /// Ceres whole-body IK sized for it, started from that posture. Used by the closed loop
 /// (walkgen/simulation/), the IK tests, bench_kinematics and examples/walking_joints.
 ///

@@ -45,8 +45,9 @@ struct JointGroup {
   std::vector<std::string> joints;  ///< joints of RobotDescription::joint_names
   double kp = 0.0;                  ///< [N m/rad] stiffness, >= 0
   double kd = 0.0;                  ///< [N m s/rad] damping, >= 0
-  /// Held at their stand_pose angles while walking: the IK leaves them out (e.g. a humanoid's
-  /// arms, so it does not swing them to place the CoM). See ceres_ik_settings().
+  /// Held at their stand_pose angles by an IK built with ceres_ik_settings(robot) (its
+  /// held_joints; the guess comes from start_standing()): the IK leaves them out, e.g. a
+  /// humanoid's arms, so that it does not swing them to place the CoM.
   bool held = false;
 };
 

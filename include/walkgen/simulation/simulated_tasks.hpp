@@ -138,11 +138,13 @@ struct TaskResult {
     mean = n > 0 ? s / double(n) : 0.0;
     stddev = n > 1 ? std::sqrt(std::max(0.0, s2 / double(n) - mean * mean)) : 0.0;
   }
-  /// The robot fell (the loop stopped with LoopStatus::fallen).
+  /// The robot fell (the loop stopped with LoopStatus::fallen; a diverged simulation is not a
+  /// fall, see status).
   bool fallen() const { return status == LoopStatus::fallen; }
-  /// [m/s] Mean speed over the task: the true CoM's displacement from the first row to the
-  /// last over the time between them (the net progress; the sway of the steps cancels out).
-  /// 0 with fewer than two rows.
+  /// [m/s] Mean speed over the task: the true CoM's displacement from the first row (the end
+  /// of the first command period) to the last over the time between them, the net progress
+  /// (the sway of the steps cancels out; the standing start counts as time). 0 with fewer than
+  /// two rows or no time between them.
   double mean_speed() const { return net_speed(&TaskRow::com_true); }
   /// [m/s] The same for the planned CoM.
   double planned_mean_speed() const { return net_speed(&TaskRow::com_plan); }
