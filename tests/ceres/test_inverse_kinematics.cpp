@@ -421,8 +421,9 @@ TEST(CeresInverseKinematics, HeldJointsKeepTheirGuess) {
   EXPECT_EQ(rigid.q(), stand);
 
   s.held_joints = {"l_knee", "elbow"};
-  walkgen_test::expect_invalid_argument([&] { HumanoidIk bad(tree(), s); },
-                                        {"CeresIkSettings.held_joints", "'elbow'"});
+  walkgen_test::expect_invalid_argument(
+      [&] { HumanoidIk bad(tree(), s); },
+      {"CeresIkSettings.held_joints", "elbow", "l_knee", "torso_yaw"});
 }
 
 // validate(CeresIkSettings) names each field of its own and of IkResidualSettings.

@@ -192,7 +192,8 @@ class CeresInverseKinematics {
     for (const std::string& name : settings.held_joints) {
       const auto it = std::find(names.begin(), names.end(), name);
       check_argument(it != names.end(), "CeresIkSettings.held_joints",
-                     "joints of the tree (see KinematicTree::joint_names())", "'" + name + "'");
+                     "revolute joints of the tree " + detail::quoted_list(names),
+                     detail::quote_name(name));
       const int i = static_cast<int>(it - names.begin());
       if (!held_[i]) constant.push_back(6 + i);
       held_[i] = true;
@@ -301,8 +302,8 @@ class CeresInverseKinematics {
   /// The weighted residual (21) and its Jacobian d r / d x (21 × (6 + joints)) for `target` at
   /// the unknowns x = (base position in W, rotation vector δ of the base relative to
   /// base_rotation_W(), q), computed with settings().derivatives; the columns of held joints
-  /// are included (Ceres' manifold drops them). For tests
-  /// and diagnostics; the solution is not changed.
+  /// are included (Ceres' manifold drops them). For tests and diagnostics; the solution is not
+  /// changed.
   /// @throws walkgen::invalid_argument for an x of the wrong size or a non-finite target or x.
   void residual_and_jacobian(const IkTarget& target, const Eigen::VectorXd& x,
                              Eigen::VectorXd& residual, Eigen::MatrixXd& jacobian) {
