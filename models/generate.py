@@ -3,7 +3,8 @@
 
     models/walkgen_humanoid.urdf   kinematics and inertias (walkgen's KinematicTree reads it)
     models/walkgen_humanoid.xml    the same robot for MuJoCo (MJCF): floor, position actuators,
-                                   ankle force-torque and joint-position sensors, chest cameras
+                                   ankle force-torque and joint-position sensors, a base IMU,
+                                   chest cameras
 
 Both files are written from the one description below, so they cannot drift apart; both are
 committed, and a ctest (model_generator_reproduces) checks that running this script reproduces
@@ -334,6 +335,7 @@ def mjcf(links, joints, frames):
     root_height = stand_root_height()
     out.append('    <body name="root_link" pos="0 0 %s">' % root_height)
     out.append('      <freejoint name="root"/>')
+    out.append('      <site name="imu"/>')  # the base IMU: its frame is the root link's
     body("root_link", 3)
     out += ["    </body>", "  </worldbody>", "  <actuator>"]
     for j in joints:
@@ -346,6 +348,9 @@ def mjcf(links, joints, frames):
         site = side + "_foot_ft_sensor"
         out.append('    <force name="%s_force" site="%s"/>' % (site, site))
         out.append('    <torque name="%s_torque" site="%s"/>' % (site, site))
+    out.append('    <framequat name="imu_quat" objtype="site" objname="imu"/>')
+    out.append('    <gyro name="imu_gyro" site="imu"/>')
+    out.append('    <accelerometer name="imu_acc" site="imu"/>')
     for j in joints:
         out.append('    <jointpos name="%s_pos" joint="%s"/>' % (j["name"], j["name"]))
     out += ["  </sensor>", "  <keyframe>"]

@@ -41,7 +41,20 @@ TEST(SettingsValidation, WalkingLoopSettings) {
         {"WalkingLoopSettings.feedback_gain", "(0, 1]", "1.5"}},
        {[](S& s) { s.feedback_gain = 0.0; }, {"WalkingLoopSettings.feedback_gain", "0"}},
        {[](S& s) { s.transfer_time = -1.0; }, {"WalkingLoopSettings.transfer_time", ">= 0", "-1"}},
-       {[](S& s) { s.transfer_time = kInf; }, {"WalkingLoopSettings.transfer_time", "inf"}}});
+       {[](S& s) { s.transfer_time = kInf; }, {"WalkingLoopSettings.transfer_time", "inf"}},
+       {[](S& s) { s.max_qp_failures = 0; }, {"WalkingLoopSettings.max_qp_failures", ">= 1", "0"}},
+       {[](S& s) { s.max_ik_failures = -2; },
+        {"WalkingLoopSettings.max_ik_failures", ">= 1", "-2"}},
+       {[](S& s) { s.max_saturated_periods = 0; },
+        {"WalkingLoopSettings.max_saturated_periods", ">= 1", "0"}},
+       {[](S& s) { s.joint_limit_margin = kNan; },
+        {"WalkingLoopSettings.joint_limit_margin", "nan"}},
+       {[](S& s) { s.max_joint_speed = 0.0; }, {"WalkingLoopSettings.max_joint_speed", "> 0"}},
+       {[](S& s) { s.max_force_ratio = kInf; }, {"WalkingLoopSettings.max_force_ratio", "inf"}},
+       {[](S& s) { s.max_tilt = 2.0; }, {"WalkingLoopSettings.max_tilt", "(0, 1.6]", "2"}},
+       {[](S& s) { s.max_tilt = kNan; }, {"WalkingLoopSettings.max_tilt", "nan"}},
+       {[](S& s) { s.max_angular_rate = -1.0; }, {"WalkingLoopSettings.max_angular_rate", "> 0"}},
+       {[](S& s) { s.max_acceleration = kNan; }, {"WalkingLoopSettings.max_acceleration", "nan"}}});
 }
 
 TEST(SettingsValidation, GoToTargetSettings) {

@@ -28,6 +28,7 @@ using walkgen::FootstepGroup;
 using walkgen::IkStatus;
 using walkgen::JointCommandStatus;
 using walkgen::JointType;
+using walkgen::LoopMode;
 using walkgen::LoopStatus;
 using walkgen::MpcStatus;
 using walkgen::PassSide;
@@ -37,6 +38,7 @@ using walkgen::QpStatus;
 using walkgen::RenderStatus;
 using walkgen::RobotStatus;
 using walkgen::ShiftRule;
+using walkgen::StopReason;
 
 /// Every enumerator of each enum, in declaration order.
 template <typename Enum>
@@ -64,9 +66,21 @@ struct Enumerators<IkStatus> {
 };
 template <>
 struct Enumerators<LoopStatus> {
-  static constexpr std::array<LoopStatus, 6> all = {
-      LoopStatus::ok,       LoopStatus::qp_failed,   LoopStatus::fallen,
-      LoopStatus::diverged, LoopStatus::not_started, LoopStatus::not_converged};
+  static constexpr std::array<LoopStatus, 7> all = {
+      LoopStatus::ok,          LoopStatus::qp_failed,     LoopStatus::fallen, LoopStatus::diverged,
+      LoopStatus::not_started, LoopStatus::not_converged, LoopStatus::fault};
+};
+template <>
+struct Enumerators<LoopMode> {
+  static constexpr std::array<LoopMode, 5> all = {
+      LoopMode::idle, LoopMode::walking, LoopMode::stopping, LoopMode::stopped, LoopMode::fault};
+};
+template <>
+struct Enumerators<StopReason> {
+  static constexpr std::array<StopReason, 8> all = {
+      StopReason::none,        StopReason::requested,         StopReason::qp_failures,
+      StopReason::ik_failures, StopReason::torque_saturation, StopReason::sensor_fault,
+      StopReason::fallen,      StopReason::diverged};
 };
 template <>
 struct Enumerators<RobotStatus> {
@@ -124,6 +138,8 @@ static_assert(to_string(MpcStatus::qp_failed)[0] == 'q');
 static_assert(to_string(CommandStatus::out_of_range)[0] == 'o');
 static_assert(to_string(IkStatus::not_converged)[0] == 'n');
 static_assert(to_string(LoopStatus::not_started)[0] == 'n');
+static_assert(to_string(LoopMode::stopping)[0] == 's');
+static_assert(to_string(StopReason::sensor_fault)[0] == 's');
 static_assert(to_string(RobotStatus::fallen)[0] == 'f');
 static_assert(to_string(JointCommandStatus::rejected)[0] == 'r');
 static_assert(to_string(RenderStatus::unavailable)[0] == 'u');
@@ -147,6 +163,8 @@ struct EnumName {
     if (std::is_same<Enum, CommandStatus>::value) return "CommandStatus";
     if (std::is_same<Enum, IkStatus>::value) return "IkStatus";
     if (std::is_same<Enum, LoopStatus>::value) return "LoopStatus";
+    if (std::is_same<Enum, LoopMode>::value) return "LoopMode";
+    if (std::is_same<Enum, StopReason>::value) return "StopReason";
     if (std::is_same<Enum, RobotStatus>::value) return "RobotStatus";
     if (std::is_same<Enum, JointCommandStatus>::value) return "JointCommandStatus";
     if (std::is_same<Enum, RenderStatus>::value) return "RenderStatus";
@@ -161,9 +179,10 @@ struct EnumName {
   }
 };
 
-using Enums = ::testing::Types<QpStatus, MpcStatus, CommandStatus, IkStatus, LoopStatus,
-                               RobotStatus, JointCommandStatus, RenderStatus, Foot, ShiftRule,
-                               JointType, PassSide, QpKind, FootstepGroup, PatternWalkStatus>;
+using Enums =
+    ::testing::Types<QpStatus, MpcStatus, CommandStatus, IkStatus, LoopStatus, LoopMode, StopReason,
+                     RobotStatus, JointCommandStatus, RenderStatus, Foot, ShiftRule, JointType,
+                     PassSide, QpKind, FootstepGroup, PatternWalkStatus>;
 TYPED_TEST_SUITE(StatusStrings, Enums, EnumName);
 
 TYPED_TEST(StatusStrings, EveryEnumeratorHasItsOwnNameAndOutOfRangeIsUnknown) {

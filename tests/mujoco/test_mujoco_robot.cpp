@@ -151,6 +151,43 @@ TEST(MujocoRobot, StandsInTheKeyframeWithTheMeasuredZmpUnderTheCom) {
   EXPECT_LT((zmp_xy - com).norm(), 0.003);
 }
 
+// The base IMU (site "imu" at the root link's origin): at rest the accelerometer reads +g along
+// the vertical; after one physics step from a tilted, spinning base the orientation is the root
+// body's and the gyroscope reads the free joint's angular velocity (MuJoCo's: in the body frame).
+TEST(MujocoRobot, ReadsTheBaseImu) {
+  MujocoRobot robot;
+  ASSERT_EQ(robot.step(1.0), RobotStatus::ok) << robot.output().message;
+  const walkgen::ImuReading& rest = robot.output().imu;
+  ASSERT_TRUE(rest.available);
+  EXPECT_LT(rest.tilt(), 0.01);
+  EXPECT_LT(rest.angular_velocity_I.norm(), 0.01);
+  EXPECT_NEAR(rest.acceleration_I.z(), 9.81, 0.05);
+  EXPECT_LT(rest.acceleration_I.head<2>().norm(), 0.1);
+
+  mjData* d = robot.data();
+  const Eigen::Quaterniond tilted(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()));
+  d->qpos[3] = tilted.w();
+  d->qpos[4] = tilted.x();
+  d->qpos[5] = tilted.y();
+  d->qpos[6] = tilted.z();
+  d->qvel[3] = 0.5;
+  d->qvel[4] = -0.2;
+  d->qvel[5] = 0.1;
+  ASSERT_EQ(robot.step(0.002), RobotStatus::ok) << robot.output().message;
+  const walkgen::ImuReading& imu = robot.output().imu;
+  const int base = mj_name2id(robot.model(), mjOBJ_BODY, "root_link");
+  const Eigen::Quaterniond body(d->xquat[4 * base], d->xquat[4 * base + 1], d->xquat[4 * base + 2],
+                                d->xquat[4 * base + 3]);
+  EXPECT_LT(imu.orientation_W_I.angularDistance(body), 1e-9);
+  EXPECT_LT((imu.angular_velocity_I - Eigen::Map<const Eigen::Vector3d>(d->qvel + 3)).norm(), 1e-9);
+  EXPECT_NEAR(imu.tilt(), std::acos((body * Eigen::Vector3d::UnitZ()).z()), 1e-9);
+  EXPECT_NEAR(imu.tilt(), 0.3, 0.01);  // one step of 0.5 rad/s about x moves it 1 mrad
+
+  walkgen::MujocoRobotSettings none;
+  none.imu_site.clear();
+  EXPECT_FALSE(MujocoRobot(none).output().imu.available);
+}
+
 TEST(MujocoRobot, ReportsAPushedRobotAsFallenAndStopsUntilReset) {
   MujocoRobot robot;
   ASSERT_EQ(robot.set_joint_targets(Eigen::VectorXd::Zero(15)),

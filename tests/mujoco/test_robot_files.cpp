@@ -108,6 +108,18 @@ TEST(RobotFiles, MissingNamesAreListedWithWhatTheModelHas) {
       },
       {"camera", "'head_left'", "none"});
   bad([](RobotDescription& d) { d.stand_keyframe = "stand"; }, {"stand_keyframe", "none"});
+  bad([](RobotDescription& d) { d.imu_site = "head_imu"; }, {"IMU site", "'head_imu'", "'imu'"});
+  {  // the G1's second IMU (in the torso) has the three sensors too; a site without them not
+    RobotDescription d = g1;
+    d.imu_site = "secondary_imu";
+    EXPECT_NO_THROW(walkgen::check_robot_against_model(d, *model.m));
+    const RobotDescription h = walkgen::find_robot_description("walkgen_humanoid");
+    const auto humanoid = walkgen::detail::load_mjcf(h.mjcf_path, "test");
+    RobotDescription sole = h;
+    sole.imu_site = "l_sole";
+    expect_invalid_argument([&] { walkgen::check_robot_against_model(sole, *humanoid.m); },
+                            {"IMU sensor", "'l_sole_quat'", "'imu_quat'"});
+  }
   bad(
       [](RobotDescription& d) {
         d.ft_sensor_frames = {{"imu", "secondary_imu"}};

@@ -259,6 +259,7 @@ TEST(WalkingLoop, StartMovesTheComOverTheSupportFootAndTheStateFollowsTheRobot) 
   const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
   walkgen::SimLoop loop(settings, robot, ik);
   EXPECT_EQ(loop.tick().status, LoopStatus::not_started);
+  EXPECT_EQ(loop.last_tick().mode, walkgen::LoopMode::idle);
   ASSERT_EQ(loop.start().status, LoopStatus::ok);
   const auto& st = loop.mpc().state();
   EXPECT_NEAR(st.com_x[0], settings.com_x[0], 0.005);
@@ -322,10 +323,20 @@ TEST(WalkingLoop, AFallIsReportedAndStopsTheLoop) {
   LoopStatus status = LoopStatus::ok;
   for (int k = 0; k < 20 && status == LoopStatus::ok; ++k) status = loop.tick().status;
   EXPECT_EQ(status, LoopStatus::fallen);
-  EXPECT_NE(loop.last_tick().message.find("base height"), std::string::npos)
+  EXPECT_NE(loop.last_tick().message.find("IMU tilts"), std::string::npos)
       << loop.last_tick().message;
-  EXPECT_LT(loop.samples().size(), 40u);                   // the samples up to the fall
-  EXPECT_EQ(loop.tick().status, LoopStatus::not_started);  // stopped until start() again
+  EXPECT_LT(loop.samples().size(), 40u);  // the samples up to the fall
+  EXPECT_EQ(loop.last_tick().mode, walkgen::LoopMode::fault);
+  EXPECT_EQ(loop.last_tick().reason, walkgen::StopReason::fallen);
+  // Stopped until the robot's reset() and start(): later ticks report the fall, run nothing.
+  const walkgen::LoopTick& again = loop.tick();
+  EXPECT_EQ(again.status, LoopStatus::fallen);
+  EXPECT_EQ(again.mode, walkgen::LoopMode::fault);
+  EXPECT_TRUE(loop.samples().empty());
+  EXPECT_EQ(loop.start().status, LoopStatus::fallen);  // the robot still tilts
+  robot.reset();
+  EXPECT_EQ(loop.start().status, LoopStatus::ok);
+  EXPECT_EQ(loop.last_tick().mode, walkgen::LoopMode::walking);
 }
 
 }  // namespace

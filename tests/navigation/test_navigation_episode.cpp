@@ -16,10 +16,10 @@ using walkgen::NavigationOptions;
 using walkgen::NavigationStatus;
 
 TEST(NavigationEpisode, StatusStrings) {
-  walkgen_test::expect_enum_strings(std::array<NavigationStatus, 6>{
+  walkgen_test::expect_enum_strings(std::array<NavigationStatus, 7>{
       NavigationStatus::reached, NavigationStatus::collided, NavigationStatus::fallen,
-      NavigationStatus::diverged, NavigationStatus::timed_out,
-      NavigationStatus::render_unavailable});
+      NavigationStatus::diverged, NavigationStatus::timed_out, NavigationStatus::render_unavailable,
+      NavigationStatus::fault});
   static_assert(to_string(NavigationStatus::render_unavailable)[0] == 'r');
   EXPECT_STREQ(to_string(NavigationStatus::timed_out), "timed_out");
   const walkgen::NavigationResult nothing{};  // nothing happened: no flag is set

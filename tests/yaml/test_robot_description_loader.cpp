@@ -37,6 +37,7 @@ TEST(RobotDescriptionFile, HumanoidFileIsTheCodePreset) {
   EXPECT_EQ(file.ft_sensor_frames, code.ft_sensor_frames);
   EXPECT_EQ(file.ft_sensor_height, code.ft_sensor_height);
   EXPECT_EQ(file.cameras, code.cameras);
+  EXPECT_EQ(file.imu_site, code.imu_site);
   EXPECT_EQ(file.base_body, code.base_body);
   EXPECT_EQ(file.torso_body, code.torso_body);
   EXPECT_EQ(file.stand_keyframe, code.stand_keyframe);
@@ -61,6 +62,7 @@ TEST(RobotDescriptionFile, G1FileLoadsWithItsFramesAndGeometry) {
   EXPECT_EQ(g1.frames[0].xyz, Eigen::Vector3d(0.035, 0.0, -0.035));
   EXPECT_TRUE(g1.ft_sensor_frames[0].empty());
   EXPECT_TRUE(g1.cameras[0].empty());
+  EXPECT_EQ(g1.imu_site, "imu");
   // Every joint in one group; the legs' gains.
   const walkgen::JointGains gains = walkgen::joint_gains(g1);
   EXPECT_TRUE(gains.kp.allFinite() && gains.kd.allFinite());

@@ -20,6 +20,13 @@
 ///       for (const auto& s : loop.samples()) { /* s.plan.zmp_x vs s.zmp.zmp_W.x(), ... */ }
 ///     }
 ///
+/// Safety (docs/safety.md): every tick reports a LoopMode and a StopReason. request_stop()
+/// finishes the step and stands the robot on both feet (walking → stopping → stopped); streaks
+/// of failed QPs or saturated motors stop it the same way; streaks of failed IK solves,
+/// non-finite or out-of-range measurements and a fall end in LoopMode::fault, where the last
+/// joint targets are held. Keep calling tick() in every mode: it carries the stop out and then
+/// holds the robot. Numerical trouble is a status, never an exception out of tick().
+///
 /// The world frame is the generator's: at start() the robot is placed so that its support sole
 /// (WalkingSettings::support_foot) is at the settings' foot pose, flat on the ground. A real
 /// robot measures no base pose, and neither does the loop: the measured CoM is forward
@@ -27,16 +34,19 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "walkgen/control/pattern_targets.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/interpolation/polynomial.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
@@ -57,6 +67,9 @@ enum class LoopStatus : std::uint8_t {
   /// the NMPC's plan, executed, violates its nonlinear constraints by more than sqp_tolerance
   /// (MpcStatus::not_converged; LoopTick::mpc and the generator's result say by how much)
   not_converged,
+  /// a fault ended the walk (LoopTick::reason, LoopTick::message): the loop stops the robot or
+  /// holds it (LoopTick::mode)
+  fault,
 };
 
 /// The enumerator's name ("ok", ...), e.g. for logs; "unknown" for a value out of range.
@@ -74,6 +87,81 @@ constexpr const char* to_string(LoopStatus s) noexcept {
       return "not_started";
     case LoopStatus::not_converged:
       return "not_converged";
+    case LoopStatus::fault:
+      return "fault";
+  }
+  return "unknown";
+}
+
+/// Where the loop's safety state machine stands (docs/safety.md).
+enum class LoopMode : std::uint8_t {
+  idle,     ///< before start() (or after a start() that did not reach walking)
+  walking,  ///< the NMPC's plans are executed
+  /// the current step is finished along the plan (velocity command zero), then the CoM moves
+  /// between the feet in WalkingLoopSettings::transfer_time
+  stopping,
+  stopped,  ///< on both feet with the CoM between them, the joint targets held; start() walks on
+  /// the last joint targets held (damping mode), or the robot stopped itself (a fall): no plan
+  /// is executed; start() (after the robot's reset() where it fell) walks again
+  fault,
+};
+
+/// The enumerator's name ("idle", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(LoopMode m) noexcept {
+  switch (m) {
+    case LoopMode::idle:
+      return "idle";
+    case LoopMode::walking:
+      return "walking";
+    case LoopMode::stopping:
+      return "stopping";
+    case LoopMode::stopped:
+      return "stopped";
+    case LoopMode::fault:
+      return "fault";
+  }
+  return "unknown";
+}
+
+/// Why the loop left LoopMode::walking (none while it walks).
+enum class StopReason : std::uint8_t {
+  none,
+  requested,  ///< request_stop(): stopping, then stopped
+  /// WalkingLoopSettings::max_qp_failures ticks in a row without a new plan: stopping (the
+  /// current step finishes), then stopped
+  qp_failures,
+  /// WalkingLoopSettings::max_ik_failures command periods in a row without an IK solution
+  /// (e.g. an unreachable CoM height): fault, the last solution held
+  ik_failures,
+  /// WalkingLoopSettings::max_saturated_periods command periods in a row with a clamped motor:
+  /// stopping, then stopped
+  torque_saturation,
+  /// a non-finite or out-of-range measurement (joint position or velocity, force sensor): fault,
+  /// the last joint targets held
+  sensor_fault,
+  fallen,    ///< the robot reports a fall (RobotStatus::fallen): fault, the robot stopped
+  diverged,  ///< the robot reports divergence (RobotStatus::diverged): fault, the robot stopped
+};
+
+/// The enumerator's name ("none", ...), e.g. for logs; "unknown" for a value out of range.
+constexpr const char* to_string(StopReason r) noexcept {
+  switch (r) {
+    case StopReason::none:
+      return "none";
+    case StopReason::requested:
+      return "requested";
+    case StopReason::qp_failures:
+      return "qp_failures";
+    case StopReason::ik_failures:
+      return "ik_failures";
+    case StopReason::torque_saturation:
+      return "torque_saturation";
+    case StopReason::sensor_fault:
+      return "sensor_fault";
+    case StopReason::fallen:
+      return "fallen";
+    case StopReason::diverged:
+      return "diverged";
   }
   return "unknown";
 }
@@ -95,8 +183,33 @@ struct WalkingLoopSettings {
   /// readings are (the soles for a robot that reports contact forces instead).
   std::string left_ft_sensor_link = walkgen_humanoid_description().ft_sensor_frames[0];
   std::string right_ft_sensor_link = walkgen_humanoid_description().ft_sensor_frames[1];
-  /// [s] start(): time to move the CoM from where it stands over the support foot.
+  /// [s] start(): time to move the CoM from where it stands over the support foot; a stop:
+  /// time to move it from where the step ended to between the feet.
   double transfer_time = 2.0;
+  /// Safety (docs/safety.md). Ticks in a row whose QP failed (MpcStatus::qp_failed: the
+  /// previous plan, shifted, is executed) before the loop stops: at most max_qp_failures − 1
+  /// ticks walk a stale plan, then the current step finishes and the robot stands.
+  int max_qp_failures = 3;
+  /// Command periods in a row without an IK solution (the previous joints sent again) before
+  /// the loop holds the robot (LoopMode::fault).
+  int max_ik_failures = 10;
+  /// Command periods in a row in which a motor's torque was clamped (RobotOutput::saturations
+  /// grew) before the loop stops.
+  int max_saturated_periods = 20;
+  /// [rad] how far a measured joint may lie beyond its limits in the IK's tree before it is a
+  /// sensor fault.
+  double joint_limit_margin = 0.1;
+  /// [rad/s] the largest believable joint speed; faster is a sensor fault.
+  double max_joint_speed = 50.0;
+  /// The largest believable force-sensor reading, in robot weights (KinematicTree::mass() g).
+  double max_force_ratio = 20.0;
+  /// [rad] a robot with an IMU (RobotOutput::imu) whose IMU tilts further from the vertical is
+  /// falling: LoopStatus::fallen, before the robot's own fall check (base height) would tell.
+  double max_tilt = 0.5;
+  /// [rad/s] the gyroscope's range (2000 °/s); a faster reading is a sensor fault.
+  double max_angular_rate = 35.0;
+  /// [m/s^2] the accelerometer's range (16 g); a larger reading is a sensor fault.
+  double max_acceleration = 160.0;
 };
 
 /// Checks the loop's own settings (the sole and sensor links are checked against the IK's tree
@@ -107,6 +220,23 @@ inline void validate(const WalkingLoopSettings& s) {
                  "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]", s.feedback_gain);
   check_argument(std::isfinite(s.transfer_time) && s.transfer_time >= 0.0,
                  "WalkingLoopSettings.transfer_time", "a duration >= 0 [s]", s.transfer_time);
+  check_argument(s.max_qp_failures >= 1, "WalkingLoopSettings.max_qp_failures", "a count >= 1",
+                 s.max_qp_failures);
+  check_argument(s.max_ik_failures >= 1, "WalkingLoopSettings.max_ik_failures", "a count >= 1",
+                 s.max_ik_failures);
+  check_argument(s.max_saturated_periods >= 1, "WalkingLoopSettings.max_saturated_periods",
+                 "a count >= 1", s.max_saturated_periods);
+  check_argument(std::isfinite(s.joint_limit_margin) && s.joint_limit_margin >= 0.0,
+                 "WalkingLoopSettings.joint_limit_margin", "an angle >= 0 [rad]",
+                 s.joint_limit_margin);
+  check_positive("WalkingLoopSettings.max_joint_speed", s.max_joint_speed, "a speed > 0 [rad/s]");
+  check_positive("WalkingLoopSettings.max_force_ratio", s.max_force_ratio,
+                 "a multiple of the robot's weight > 0");
+  check_argument(s.max_tilt > 0.0 && s.max_tilt <= 1.6, "WalkingLoopSettings.max_tilt",
+                 "an angle in (0, 1.6] [rad]", s.max_tilt);
+  check_positive("WalkingLoopSettings.max_angular_rate", s.max_angular_rate, "a rate > 0 [rad/s]");
+  check_positive("WalkingLoopSettings.max_acceleration", s.max_acceleration,
+                 "an acceleration > 0 [m/s^2]");
 }
 
 /// The loop settings with `robot`'s sole and sensor frames; the rest at their defaults.
@@ -123,7 +253,10 @@ inline WalkingLoopSettings loop_settings(const RobotDescription& robot) {
 
 /// One command period of the loop: what was planned and what was measured after it.
 struct LoopSample {
-  TrajectorySample<double> plan;  ///< the interpolated pattern (CoM, ZMP, feet), world frame
+  /// The pattern executed (CoM, ZMP, feet), world frame: the NMPC's interpolated plan while
+  /// walking and finishing a step, the CoM's move between the feet while stopping, the held
+  /// standing pose (at rest) when stopped or in a fault.
+  TrajectorySample<double> plan;
   /// From the ankle sensors after the sample's physics (eq. 2.11–2.17), with the sensor poses
   /// of forward kinematics from the planned support sole: the frame of `plan`, as a robot
   /// without a base pose measurement sees it. Compare it with plan.zmp_x, plan.zmp_y.
@@ -134,21 +267,33 @@ struct LoopSample {
   /// CoM by forward kinematics of the measured joints from the planned support sole [m].
   Eigen::Vector3d com_measured_W = Eigen::Vector3d::Zero();
   double base_height = 0.0;  ///< [m] as the robot reports it
+  /// The IK's outcome for this sample; converged when holding (no solve: the held joints are
+  /// the last solution).
   IkStatus ik = IkStatus::converged;
+  /// The measurement passed the loop's checks (finite, within WalkingLoopSettings' ranges).
+  /// When false, ft, zmp, com_measured_W and base_height are zero (not the faulty values).
+  bool sensors_ok = true;
+  LoopMode mode = LoopMode::walking;  ///< the loop's mode while this sample ran
 };
 
 /// Summary of one tick (one NMPC period t).
 struct LoopTick {
   LoopStatus status = LoopStatus::not_started;
+  LoopMode mode = LoopMode::idle;        ///< the loop's mode after the tick
+  StopReason reason = StopReason::none;  ///< why the loop is not walking (none while it walks)
   MpcStatus mpc = MpcStatus::solved;
   /// Samples whose IK did not converge (previous joints sent again) or whose joints the robot
   /// rejected as non-finite (previous targets kept).
   int ik_failures = 0;
+  /// Ticks in a row, this one included, whose plan is the previous one shifted
+  /// (MpcStatus::qp_failed); 0 after a tick that solved or did not run the NMPC.
+  int qp_failure_streak = 0;
   bool fed_back = false;
   /// Measured − planned CoM position at the feedback of this tick [m] (zero without one).
   Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
   /// Why, unless status is ok: the robot's message when it stopped, the NMPC's (MpcResult::
-  /// message) when its QP failed or its plan did not converge.
+  /// message) when its QP failed or its plan did not converge, the fault's (which sensor, what
+  /// streak) in LoopStatus::fault. Also the stop's reason while stopping or stopped on request.
   std::string message;
 };
 
@@ -191,6 +336,14 @@ class WalkingLoop {
     for (std::size_t j = 0; j < names.size(); ++j) to_tree_[j] = tree_.joint_index(names[j]);
     q_tree_.resize(tree_.num_joints());
     q_robot_.resize(Eigen::Index(names.size()));
+    const Eigen::VectorXd lower = tree_.lower_limits(), upper = tree_.upper_limits();
+    lower_.resize(q_robot_.size());
+    upper_.resize(q_robot_.size());
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      lower_[Eigen::Index(j)] = lower[to_tree_[j]] - loop_.joint_limit_margin;
+      upper_[Eigen::Index(j)] = upper[to_tree_[j]] + loop_.joint_limit_margin;
+    }
+    max_force_ = loop_.max_force_ratio * tree_.mass() * settings.gravity;
     samples_.resize(std::size_t(interp_.samples_per_tick()));
     plan_.resize(samples_.size());
   }
@@ -204,23 +357,35 @@ class WalkingLoop {
   /// minimum-jerk path of WalkingLoopSettings::transfer_time with both feet where they are
   /// measured. Then the generator's state is set from the measurement (CoM from forward
   /// kinematics, the support sole at the settings' foot pose, the other foot where it is,
-  /// standing still).
-  /// @return ok, or fallen / diverged when the robot stopped during the transfer; ik_failures
-  ///   counts the transfer's samples whose IK did not converge (previous joints sent again).
+  /// standing still) and the velocity command is zero. Also walks on from stopped or a fault.
+  /// @return ok (LoopMode::walking); fallen / diverged when the robot stopped or its IMU tilts
+  ///   beyond max_tilt (before or during the transfer); fault (LoopMode::fault) on a faulty
+  ///   measurement or max_ik_failures command periods in a row without an IK solution (e.g. a CoM
+  ///   height the legs cannot reach: the robot keeps standing). ik_failures counts the transfer's
+  ///   samples whose IK did not converge (previous joints sent again).
   [[nodiscard]] const LoopTick& start() {
-    tick_ = LoopTick();
-    started_ = false;
+    begin_tick();
+    mode_ = LoopMode::idle;
+    reason_ = StopReason::none;
+    reason_message_.clear();
+    qp_streak_ = ik_streak_ = saturated_streak_ = 0;
+    centring_ = false;
+    last_saturations_ = robot_.output().saturations;
+    if (!robot_running() || !measurement_ok(robot_.output(), "start()") || !upright()) {
+      return end_tick();
+    }
     const WalkingSettings<double>& s = mpc_.settings();
     const Foot support = s.support_foot;
     const FootPose<double> support_pose{s.foot_x, s.foot_y, s.foot_q};
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
     ik_.set_initial_guess(base_p_W_, base_R_W_, q_tree_);
-    IkTarget target;
-    const FootPose<double> feet[2] = {sole_pose(Foot::left), sole_pose(Foot::right)};
-    target.left_foot = {Eigen::Vector3d(feet[0].x, feet[0].y, 0.0), feet[0].q};
-    target.right_foot = {Eigen::Vector3d(feet[1].x, feet[1].y, 0.0), feet[1].q};
-    target.hold_upright((feet[0].q + feet[1].q) / 2.0);
+    TrajectorySample<double> stand;  // the transfer: feet where they are, the CoM moving
+    stand.left.motion = FootMotion<double>::at_rest(sole_pose(Foot::left));
+    stand.right.motion = FootMotion<double>::at_rest(sole_pose(Foot::right));
+    stand.com_q[0] = (stand.left.motion.q.position + stand.right.motion.q.position) / 2.0;
+    stand.support_foot = support;
+    stand.time = robot_.output().time;
     const Eigen::Vector3d c0 = com_W();
     const Eigen::Vector3d c1(s.com_x[0], s.com_y[0], s.com_z);
     const double dt = interp_.command_period();
@@ -228,9 +393,25 @@ class WalkingLoop {
     for (int k = 1; k <= n; ++k) {
       const double r = double(k) / double(n);
       const double blend = r * r * r * (10.0 - 15.0 * r + 6.0 * r * r);  // minimum jerk
-      target.com_W = c0 + blend * (c1 - c0);
-      tick_.ik_failures += ik_.solve(target).status != IkStatus::converged;  // previous joints
-      if (!send_and_step(dt)) return tick_;
+      const Eigen::Vector3d c = c0 + blend * (c1 - c0);
+      stand.com_x[0] = stand.zmp_x = c.x();
+      stand.com_y[0] = stand.zmp_y = c.y();
+      stand.com_z = c.z();
+      stand.time += dt;
+      last_sample_ = stand;
+      const bool converged = ik_.solve(ik_target(stand)).status == IkStatus::converged;
+      count_ik(converged);  // the previous joints are sent again
+      if (!send_and_step(dt, true) || !measurement_ok(robot_.output(), "start()")) {
+        return end_tick();
+      }
+      if (ik_streak_ >= loop_.max_ik_failures) {
+        enter_fault(StopReason::ik_failures,
+                    "start(): the IK found no joints for the CoM at (" + std::to_string(c.x()) +
+                        ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + ") m " +
+                        std::to_string(ik_streak_) +
+                        " command periods in a row (is com_z reachable?): holding the robot");
+        return end_tick();
+      }
     }
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
@@ -243,67 +424,102 @@ class WalkingLoop {
     st.swing_origin = sole_pose(other(support));
     st.swing = FootMotion<double>::at_rest(st.swing_origin);
     mpc_.reset(st);
-    samples_.resize(plan_.size());
+    (void)mpc_.set_command(Eigen::Vector3d::Zero());  // zero is always accepted
     ticks_ = 0;
-    started_ = true;
-    tick_.status = LoopStatus::ok;
-    return tick_;
+    mode_ = LoopMode::walking;
+    return end_tick();
   }
 
-  /// The velocity command (v_x, v_y [m/s], ω_z [rad/s]) in the robot frame, for the next ticks.
+  /// The velocity command (v_x, v_y [m/s], ω_z [rad/s]) in the robot frame, for the next ticks
+  /// (while stopping the loop commands zero; start() sets zero).
   [[nodiscard]] CommandStatus set_command(const Eigen::Vector3d& command) {
     return mpc_.set_command(command);
   }
 
+  /// Stops the walk: the current step finishes along the plan (command zero), then the CoM
+  /// moves between the feet and the loop holds the robot (LoopMode::stopping, then stopped;
+  /// reason requested). Only while walking; returns the mode after the call.
+  LoopMode request_stop() {
+    begin_stop(StopReason::requested, "stopping on request");
+    return mode_;
+  }
+
   /// One NMPC period: feedback (when due), solve, interpolate, and per command period IK,
-  /// joint targets and a robot step. samples() holds what happened.
+  /// joint targets, a robot step and the measurement's checks; samples() holds what happened.
+  /// While stopping after the step, stopped or in a fault it runs the same number of command
+  /// periods without the NMPC (moving the CoM between the feet, or holding the joints).
   [[nodiscard]] const LoopTick& tick() {
-    tick_ = LoopTick();
-    if (!started_) {
-      tick_.message = "WalkingLoop::tick: call start() first (or the robot stopped)";
+    begin_tick();
+    if (mode_ == LoopMode::idle) {
+      samples_.clear();  // keeps the capacity
+      tick_.message = "WalkingLoop::tick: call start() first";
       return tick_;
     }
-    if (loop_.com_feedback && ticks_ > 0 && ticks_ % feedback_every_ == 0) feed_back();
-    const MpcResult<double>& solved = mpc_.solve();
-    tick_.mpc = solved.status;
-    const char* mpc_message = solved.message;
-    interp_.interpolate(mpc_.tick_plan(), plan_.data());
+    if (robot_stopped()) {
+      samples_.clear();
+      return end_tick();
+    }
+    samples_.resize(plan_.size());
+    const bool planning = mode_ == LoopMode::walking || (mode_ == LoopMode::stopping && !centring_);
+    const char* mpc_message = "";
+    if (planning) {
+      if (mode_ == LoopMode::stopping) (void)mpc_.set_command(Eigen::Vector3d::Zero());
+      if (loop_.com_feedback && ticks_ > 0 && ticks_ % feedback_every_ == 0) feed_back();
+    }
+    const bool plan_valid = planning && mode_ != LoopMode::fault;  // feedback may find a fault
+    if (plan_valid) {
+      const MpcResult<double>& solved = mpc_.solve();
+      tick_.mpc = solved.status;
+      mpc_message = solved.message;
+      qp_streak_ = solved.status == MpcStatus::qp_failed ? qp_streak_ + 1 : 0;
+      tick_.qp_failure_streak = qp_streak_;
+      if (qp_streak_ >= loop_.max_qp_failures) {
+        begin_stop(StopReason::qp_failures, "the NMPC's QP failed " + std::to_string(qp_streak_) +
+                                                " ticks in a row (" + mpc_message +
+                                                "): stopping after the current step");
+      }
+      interp_.interpolate(mpc_.tick_plan(), plan_.data());
+    } else {
+      qp_streak_ = 0;
+    }
     const double dt = interp_.command_period();
     for (std::size_t k = 0; k < plan_.size(); ++k) {
       LoopSample& out = samples_[k];
-      out.plan = plan_[k];
-      out.ik = ik_.solve(ik_target(plan_[k])).status;
-      tick_.ik_failures += out.ik != IkStatus::converged;  // the previous joints stay
-      const bool running = send_and_step(dt);
-      const RobotOutput& m = robot_.output();
-      out.ft = m.ft;
-      out.base_height = m.base_height;
-      to_tree_order(m.q);
-      place_on_sole(plan_[k].support_foot, planned_support(plan_[k]));
-      out.com_measured_W = com_W();
-      for (int f = 0; f < 2; ++f) {  // the same wrenches, at the sensor poses of this FK
-        ft_fk_[std::size_t(f)] = m.ft[std::size_t(f)];
-        ft_fk_[std::size_t(f)].pose_W_S.linear() = link_rotation_W(sensor_[f]);
-        ft_fk_[std::size_t(f)].pose_W_S.translation() = link_position_W(sensor_[f]);
+      out.plan = next_sample(plan_valid ? &plan_[k] : nullptr, dt);
+      out.mode = mode_;
+      const bool solve = mode_ == LoopMode::walking || mode_ == LoopMode::stopping;
+      out.ik = IkStatus::converged;
+      if (solve) {
+        out.ik = ik_.solve(ik_target(out.plan)).status;
+        count_ik(out.ik == IkStatus::converged);  // the previous joints stay
       }
-      out.zmp = measured_zmp(ft_fk_, robot_.info().ft_sensor_height);
+      last_sample_ = out.plan;
+      const bool running = send_and_step(dt, solve);
+      measure(out, out.plan);
+      if (running) check_streaks();
       if (!running) {
         samples_.resize(k + 1);  // what happened up to the stop (no reallocation: shrinks)
-        return tick_;
+        return end_tick();
       }
     }
-    mpc_.advance();
-    ++ticks_;
-    tick_.status = tick_.mpc == MpcStatus::solved          ? LoopStatus::ok
-                   : tick_.mpc == MpcStatus::not_converged ? LoopStatus::not_converged
-                                                           : LoopStatus::qp_failed;
-    if (tick_.status != LoopStatus::ok) tick_.message = mpc_message;  // a failed tick only
+    if (plan_valid) {
+      mpc_.advance();
+      ++ticks_;
+    }
+    end_tick();
+    if (tick_.status == LoopStatus::ok && plan_valid && tick_.mpc != MpcStatus::solved) {
+      tick_.status =
+          tick_.mpc == MpcStatus::not_converged ? LoopStatus::not_converged : LoopStatus::qp_failed;
+      tick_.message = mpc_message;  // a failed tick only
+    }
     return tick_;
   }
 
   /// The command periods of the last tick (fewer when the robot stopped during it).
   const std::vector<LoopSample>& samples() const { return samples_; }
   const LoopTick& last_tick() const { return tick_; }
+  LoopMode mode() const { return mode_; }
+  StopReason reason() const { return reason_; }
 
   /// The generator, e.g. for obstacles (mpc().set_obstacles()) or its plan.
   Mpc& mpc() { return mpc_; }
@@ -312,25 +528,292 @@ class WalkingLoop {
   long ticks() const { return ticks_; }
 
  private:
+  /// Clears the tick's summary (the message keeps its capacity).
+  void begin_tick() {
+    tick_.status = LoopStatus::not_started;
+    tick_.mpc = MpcStatus::solved;
+    tick_.ik_failures = 0;
+    tick_.qp_failure_streak = 0;
+    tick_.fed_back = false;
+    tick_.com_error.setZero();
+    tick_.message.clear();
+  }
+
+  /// The tick's mode, reason, status and message from the state machine.
+  const LoopTick& end_tick() {
+    tick_.mode = mode_;
+    tick_.reason = reason_;
+    switch (reason_) {
+      case StopReason::none:
+        tick_.status = mode_ == LoopMode::walking ? LoopStatus::ok : LoopStatus::not_started;
+        break;
+      case StopReason::requested:
+        tick_.status = LoopStatus::ok;
+        break;
+      case StopReason::fallen:
+        tick_.status = LoopStatus::fallen;
+        break;
+      case StopReason::diverged:
+        tick_.status = LoopStatus::diverged;
+        break;
+      default:
+        tick_.status = LoopStatus::fault;
+        break;
+    }
+    tick_.message = reason_message_;
+    return tick_;
+  }
+
+  /// Walking → stopping for `reason` (nothing in another mode).
+  void begin_stop(StopReason reason, const std::string& message) {
+    if (mode_ != LoopMode::walking) return;
+    mode_ = LoopMode::stopping;
+    reason_ = reason;
+    reason_message_ = message;
+    finish_time_ = 0.0;
+    centring_ = false;
+  }
+
+  /// Any mode → fault for `reason`: the last joint targets are held at the last sample's pose.
+  void enter_fault(StopReason reason, const std::string& message) {
+    mode_ = LoopMode::fault;
+    reason_ = reason;
+    reason_message_ = message;
+    centring_ = false;
+    held_ = at_rest(last_sample_);
+  }
+
+  bool robot_stopped() const {
+    return mode_ == LoopMode::fault &&
+           (reason_ == StopReason::fallen || reason_ == StopReason::diverged);
+  }
+
+  /// False (fault entered) when the robot reports that it stopped.
+  bool robot_running() {
+    const RobotOutput& m = robot_.output();
+    if (m.status == RobotStatus::ok) return true;
+    enter_fault(m.status == RobotStatus::fallen ? StopReason::fallen : StopReason::diverged,
+                m.message);
+    return false;
+  }
+
+  /// The sample to execute next: the plan's (walking; stopping until the step has ended), the
+  /// CoM's move between the feet (stopping after the step), the held pose (stopped, fault).
+  TrajectorySample<double> next_sample(const TrajectorySample<double>* planned, double dt) {
+    if (mode_ == LoopMode::walking && planned) return *planned;
+    if (mode_ == LoopMode::stopping && !centring_ && planned) {
+      if (!planned->double_support) {
+        finish_time_ += dt;
+        const WalkingSettings<double>& s = mpc_.settings();
+        if (finish_time_ <= s.t_step + s.t) return *planned;
+        enter_fault(reason_, reason_message_ + "; the step did not end within t_step: holding");
+        held_.time += dt;
+        return held_;
+      }
+      begin_centring(*planned);
+    }
+    if (mode_ == LoopMode::stopping && centring_) {
+      centre_time_ = std::min(centre_time_ + dt, centre_x_.duration);
+      TrajectorySample<double> s = centre_from_;
+      const Sample3<double> x = centre_x_.evaluate(centre_time_);
+      const Sample3<double> y = centre_y_.evaluate(centre_time_);
+      s.com_x << x.position, x.velocity, x.acceleration;
+      s.com_y << y.position, y.velocity, y.acceleration;
+      const double h_g = s.com_z / mpc_.settings().gravity;  // ZMP of the LIPM (eq. 2.6–2.7)
+      s.zmp_x = x.position - h_g * x.acceleration;
+      s.zmp_y = y.position - h_g * y.acceleration;
+      s.time = centre_from_.time + centre_time_;
+      if (centre_time_ >= centre_x_.duration) {
+        mode_ = LoopMode::stopped;
+        centring_ = false;
+        held_ = at_rest(s);
+      }
+      return s;
+    }
+    held_.time += dt;  // stopped or fault: the held pose
+    return held_;
+  }
+
+  /// Stopping after the step: from `s` (both feet down) the CoM moves to the middle of the
+  /// soles along 5th-order polynomials from its state (position, velocity, acceleration) to
+  /// rest, in transfer_time; the feet stay.
+  void begin_centring(const TrajectorySample<double>& s) {
+    centring_ = true;
+    centre_time_ = 0.0;
+    centre_from_ = at_rest(s);
+    centre_from_.com_x = s.com_x;
+    centre_from_.com_y = s.com_y;
+    const double duration = std::max(loop_.transfer_time, interp_.command_period());
+    const auto& l = centre_from_.left.motion;
+    const auto& r = centre_from_.right.motion;
+    centre_x_ = quintic(duration, Sample3<double>{s.com_x[0], s.com_x[1], s.com_x[2]},
+                        Sample3<double>{(l.x.position + r.x.position) / 2.0, 0.0, 0.0});
+    centre_y_ = quintic(duration, Sample3<double>{s.com_y[0], s.com_y[1], s.com_y[2]},
+                        Sample3<double>{(l.y.position + r.y.position) / 2.0, 0.0, 0.0});
+  }
+
+  /// `s` standing still: feet on the ground at rest, CoM and yaw without motion, ZMP under the
+  /// CoM, both feet supporting.
+  static TrajectorySample<double> at_rest(const TrajectorySample<double>& s) {
+    TrajectorySample<double> r = s;
+    for (SwingSample<double>* f : {&r.left, &r.right}) {
+      f->motion = FootMotion<double>::at_rest(f->motion.pose());
+      f->z = {0.0, 0.0, 0.0};
+    }
+    r.com_x.tail<2>().setZero();
+    r.com_y.tail<2>().setZero();
+    r.com_q.tail<2>().setZero();
+    r.zmp_x = r.com_x[0];
+    r.zmp_y = r.com_y[0];
+    r.zmp_z = 0.0;
+    r.double_support = true;
+    return r;
+  }
+
+  /// Counts a sample whose IK did not converge, or whose joints the robot rejected, in the
+  /// tick's ik_failures and the streak.
+  void count_ik(bool converged) {
+    ik_streak_ = converged ? 0 : ik_streak_ + 1;
+    tick_.ik_failures += !converged;
+  }
+
+  /// The streaks after a sample: IK failures → fault; torque saturation → stopping.
+  void check_streaks() {
+    const long saturations = robot_.output().saturations;
+    saturated_streak_ = saturations > last_saturations_ ? saturated_streak_ + 1 : 0;
+    last_saturations_ = saturations;
+    if (saturated_streak_ >= loop_.max_saturated_periods) {
+      begin_stop(StopReason::torque_saturation,
+                 "motor torques clamped " + std::to_string(saturated_streak_) +
+                     " command periods in a row: stopping after the current step");
+    }
+    if (ik_streak_ >= loop_.max_ik_failures && mode_ != LoopMode::fault) {
+      enter_fault(StopReason::ik_failures,
+                  "the IK found no joints " + std::to_string(ik_streak_) +
+                      " command periods in a row: holding the last solution");
+    }
+  }
+
+  /// The sample's measurement (ZMP, FK CoM) when the robot's output passes the checks; zeros
+  /// and a sensor fault otherwise.
+  void measure(LoopSample& out, const TrajectorySample<double>& plan) {
+    const RobotOutput& m = robot_.output();
+    out.sensors_ok = measurement_ok(m, "tick()");
+    if (!out.sensors_ok) {
+      out.ft = {};
+      out.zmp = MeasuredZmp();
+      out.com_measured_W.setZero();
+      out.base_height = 0.0;
+      return;
+    }
+    out.ft = m.ft;
+    out.base_height = m.base_height;
+    to_tree_order(m.q);
+    place_on_sole(plan.support_foot, planned_support(plan));
+    out.com_measured_W = com_W();
+    for (int f = 0; f < 2; ++f) {  // the same wrenches, at the sensor poses of this FK
+      ft_fk_[std::size_t(f)] = m.ft[std::size_t(f)];
+      ft_fk_[std::size_t(f)].pose_W_S.linear() = link_rotation_W(sensor_[f]);
+      ft_fk_[std::size_t(f)].pose_W_S.translation() = link_position_W(sensor_[f]);
+    }
+    out.zmp = measured_zmp(ft_fk_, robot_.info().ft_sensor_height);
+  }
+
+  /// True when every joint position and velocity is finite and in range, both force sensors
+  /// read finite, believable wrenches at finite poses and the IMU (if any) finite readings in
+  /// its range; otherwise a sensor fault (entered unless
+  /// the loop already stopped the robot), with the reading named. `where` begins the message.
+  bool measurement_ok(const RobotOutput& m, const char* where) {
+    const auto& names = robot_.info().joint_names;
+    const Eigen::Index n = Eigen::Index(names.size());
+    std::string problem;
+    if (m.q.size() != n || m.dq.size() != n) {
+      problem = "the robot reports " + std::to_string(m.q.size()) + " joint positions and " +
+                std::to_string(m.dq.size()) + " velocities for " + std::to_string(n) + " joints";
+    }
+    for (Eigen::Index j = 0; problem.empty() && j < n; ++j) {  // strings only for a fault
+      if (!(m.q[j] >= lower_[j] && m.q[j] <= upper_[j])) {     // also NaN
+        problem = "joint '" + names[std::size_t(j)] + "' position " + std::to_string(m.q[j]) +
+                  " rad is outside [" + std::to_string(lower_[j]) + ", " +
+                  std::to_string(upper_[j]) + "] (its limits widened by joint_limit_margin)";
+      } else if (!(std::abs(m.dq[j]) <= loop_.max_joint_speed)) {
+        problem = "joint '" + names[std::size_t(j)] + "' velocity " + std::to_string(m.dq[j]) +
+                  " rad/s is beyond max_joint_speed " + std::to_string(loop_.max_joint_speed) +
+                  " rad/s";
+      }
+    }
+    for (int f = 0; problem.empty() && f < 2; ++f) {
+      const ForceTorqueReading& r = m.ft[std::size_t(f)];
+      const char* sensor = f == 0 ? "left force sensor" : "right force sensor";
+      if (!r.force_S.allFinite() || !r.torque_S.allFinite() || !r.pose_W_S.matrix().allFinite()) {
+        problem = std::string(sensor) + " reads a non-finite wrench or pose";
+      } else if (!(r.force_S.norm() <= max_force_)) {
+        problem =
+            std::string(sensor) + " reads " + std::to_string(r.force_S.norm()) +
+            " N, beyond max_force_ratio × the robot's weight = " + std::to_string(max_force_) +
+            " N";
+      }
+    }
+    const ImuReading& imu = m.imu;
+    if (problem.empty() && imu.available) {
+      if (!imu.orientation_W_I.coeffs().allFinite() || !imu.angular_velocity_I.allFinite() ||
+          !imu.acceleration_I.allFinite()) {
+        problem = "the IMU reads a non-finite orientation, rate or acceleration";
+      } else if (!(std::abs(imu.orientation_W_I.norm() - 1.0) <= 1e-3)) {
+        problem = "the IMU's orientation quaternion has norm " +
+                  std::to_string(imu.orientation_W_I.norm()) + " (not a rotation)";
+      } else if (!(imu.angular_velocity_I.norm() <= loop_.max_angular_rate)) {
+        problem = "the IMU's rate " + std::to_string(imu.angular_velocity_I.norm()) +
+                  " rad/s is beyond max_angular_rate " + std::to_string(loop_.max_angular_rate) +
+                  " rad/s";
+      } else if (!(imu.acceleration_I.norm() <= loop_.max_acceleration)) {
+        problem = "the IMU's acceleration " + std::to_string(imu.acceleration_I.norm()) +
+                  " m/s^2 is beyond max_acceleration " + std::to_string(loop_.max_acceleration) +
+                  " m/s^2";
+      }
+    }
+    if (problem.empty()) return true;
+    if (!robot_stopped())
+      enter_fault(StopReason::sensor_fault,
+                  std::string(where) + ": " + problem + ": holding the joint targets");
+    return false;
+  }
+
   void to_tree_order(const Eigen::VectorXd& q_robot) {
     for (std::size_t j = 0; j < to_tree_.size(); ++j) {
       q_tree_[to_tree_[j]] = q_robot[Eigen::Index(j)];
     }
   }
 
-  /// Sends the IK's joints to the robot and steps it by dt; false (status and message set,
-  /// the loop stopped) when the robot stopped. A robot rejects non-finite joints and keeps its
-  /// previous targets: such a sample counts as one whose IK failed.
-  bool send_and_step(double dt) {
-    for (std::size_t j = 0; j < to_tree_.size(); ++j) {
-      q_robot_[Eigen::Index(j)] = ik_.q()[to_tree_[j]];
+  /// Sends the joints to the robot (the IK's when `from_ik`, else the last targets again) and
+  /// steps it by dt; false (fault fallen or diverged) when the robot stopped. A robot rejects
+  /// non-finite joints and keeps its previous targets: such a sample counts as one whose IK
+  /// failed.
+  bool send_and_step(double dt, bool from_ik) {
+    if (from_ik) {
+      for (std::size_t j = 0; j < to_tree_.size(); ++j) {
+        q_robot_[Eigen::Index(j)] = ik_.q()[to_tree_[j]];
+      }
+      have_targets_ = true;
     }
-    if (robot_.set_joint_targets(q_robot_) != JointCommandStatus::accepted) ++tick_.ik_failures;
-    const RobotStatus rs = robot_.step(dt);
-    if (rs == RobotStatus::ok) return true;
-    tick_.status = rs == RobotStatus::fallen ? LoopStatus::fallen : LoopStatus::diverged;
-    tick_.message = robot_.output().message;
-    started_ = false;
+    // Holding before any target was sent (a fault at start()): the robot keeps its own.
+    if (have_targets_ && robot_.set_joint_targets(q_robot_) != JointCommandStatus::accepted) {
+      count_ik(false);
+    }
+    if (robot_.step(dt) == RobotStatus::ok) return upright();
+    return robot_running();
+  }
+
+  /// False (fault fallen entered) when the robot's IMU tilts beyond max_tilt; true without an
+  /// IMU or with a non-finite one (measurement_ok() reports that).
+  bool upright() {
+    const ImuReading& imu = robot_.output().imu;
+    if (!imu.available) return true;
+    const double tilt = imu.tilt();
+    if (!(tilt > loop_.max_tilt)) return true;
+    enter_fault(StopReason::fallen, "the IMU tilts " + std::to_string(tilt) +
+                                        " rad from the vertical, beyond max_tilt " +
+                                        std::to_string(loop_.max_tilt) + " rad: falling");
     return false;
   }
 
@@ -367,17 +850,22 @@ class WalkingLoop {
     return {p.x(), p.y(), yaw_of(R)};
   }
 
-  /// §6.3: the CoM of the measured joints, from the support sole where the plan has it.
+  /// §6.3: the CoM of the measured joints, from the support sole where the plan has it. The
+  /// measurement passed its checks after the last sample, so the CoM is finite.
   void feed_back() {
     const RobotOutput& m = robot_.output();
     to_tree_order(m.q);
     typename Mpc::State st = mpc_.state();
     place_on_sole(st.support_foot, st.support);
     const Eigen::Vector3d c = com_W();
+    if (!c.allFinite()) {
+      enter_fault(StopReason::sensor_fault, "feedback: the measured CoM is not finite");
+      return;
+    }
     tick_.com_error = Eigen::Vector2d(c.x() - st.com_x[0], c.y() - st.com_y[0]);
     st.com_x[0] += loop_.feedback_gain * tick_.com_error.x();
     st.com_y[0] += loop_.feedback_gain * tick_.com_error.y();
-    mpc_.set_state(st);  // throws on non-finite measurements
+    mpc_.set_state(st);
     tick_.fed_back = true;
   }
 
@@ -394,13 +882,26 @@ class WalkingLoop {
   std::array<ForceTorqueReading, 2> ft_fk_;
   std::vector<Eigen::Index> to_tree_;
   Eigen::VectorXd q_tree_, q_robot_;
+  Eigen::VectorXd lower_, upper_;  ///< believable joint positions, robot order
+  double max_force_ = 0.0;         ///< [N] believable force-sensor reading
   Eigen::Vector3d base_p_W_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d base_R_W_ = Eigen::Matrix3d::Identity();
   std::vector<TrajectorySample<double>> plan_;
   std::vector<LoopSample> samples_;
   LoopTick tick_;
   long ticks_ = 0;
-  bool started_ = false;
+  // The safety state machine (docs/safety.md).
+  LoopMode mode_ = LoopMode::idle;
+  StopReason reason_ = StopReason::none;
+  std::string reason_message_;
+  int qp_streak_ = 0, ik_streak_ = 0, saturated_streak_ = 0;
+  long last_saturations_ = 0;
+  bool have_targets_ = false;  ///< q_robot_ holds joints sent to the robot
+  double finish_time_ = 0.0;   ///< [s] stopping: time spent finishing the step
+  bool centring_ = false;      ///< stopping: the step ended, the CoM moves between the feet
+  double centre_time_ = 0.0;
+  Polynomial<double, 5> centre_x_, centre_y_;
+  TrajectorySample<double> centre_from_, held_, last_sample_;
 };
 
 }  // namespace walkgen

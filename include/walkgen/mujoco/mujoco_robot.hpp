@@ -7,7 +7,8 @@
 /// Loads an MJCF (walkgen's humanoid, models/walkgen_humanoid.xml, unless told otherwise), maps
 /// the joint names to MuJoCo joints, the actuators and jointpos sensors on them (measured
 /// positions are qpos where a joint has no sensor) and the ankle sensor sites to their
-/// `<site>_force` / `<site>_torque` sensors by name, runs headless at the model's timestep, and
+/// `<site>_force` / `<site>_torque` sensors by name (the IMU site to `<site>_quat`, `<site>_gyro`,
+/// `<site>_acc`), runs headless at the model's timestep, and
 /// renders the chest cameras offscreen through EGL (Mesa's surfaceless platform, software
 /// rendering). Divergence (non-finite state, MuJoCo's bad-acceleration reset) and falls (base
 /// below fall_height_ratio of its height in the initial state) stop the robot and are reported
@@ -130,6 +131,9 @@ struct MujocoRobotSettings {
   std::vector<FrameDescription> frames = walkgen_humanoid_description().frames;
   /// Chest cameras (left, right); none (two empty names): render_cameras() is unavailable.
   std::array<std::string, 2> cameras = walkgen_humanoid_description().cameras;
+  /// IMU site with sensors "<site>_quat" (framequat), "<site>_gyro", "<site>_acc"; empty: no
+  /// IMU (RobotOutput::imu.available false).
+  std::string imu_site = walkgen_humanoid_description().imu_site;
   /// The floating base, whose height tells a fall.
   std::string base_body = walkgen_humanoid_description().base_body;
   /// Initial state (qpos, ctrl); empty: the model's qpos0 with stand_pose's joints, the base
@@ -197,6 +201,7 @@ inline MujocoRobotSettings mujoco_robot_settings(const RobotDescription& robot) 
   s.sole_frames = robot.sole_frames;
   s.frames = robot.frames;
   s.cameras = robot.cameras;
+  s.imu_site = robot.imu_site;
   s.base_body = robot.base_body;
   s.keyframe = robot.stand_keyframe;
   s.stand_pose = robot.stand_pose;
@@ -610,6 +615,12 @@ class MujocoRobot final : public Robot {
         ft_torque_[f] = sensor_address(site + "_torque", mjSENS_TORQUE, 3, missing);
       }
     }
+    if (!settings_.imu_site.empty()) {
+      const std::string& site = settings_.imu_site;
+      imu_quat_ = sensor_address(site + "_quat", mjSENS_FRAMEQUAT, 4, missing);
+      imu_gyro_ = sensor_address(site + "_gyro", mjSENS_GYRO, 3, missing);
+      imu_acc_ = sensor_address(site + "_acc", mjSENS_ACCELEROMETER, 3, missing);
+    }
     for (int f = 0; f < 2; ++f) {
       if (!settings_.sole_frames[0].empty())
         soles_[f] = find_frame(settings_.sole_frames[f], missing);
@@ -894,6 +905,14 @@ class MujocoRobot final : public Robot {
       contact_wrenches(output_.ft);
     }
     output_.base_height = d->xpos[3 * base_body_ + 2];
+    ImuReading& imu = output_.imu;
+    imu.available = imu_quat_ >= 0;
+    if (imu.available) {
+      const mjtNum* q = d->sensordata + imu_quat_;  // w, x, y, z
+      imu.orientation_W_I = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+      imu.angular_velocity_I = Eigen::Map<const Eigen::Vector3d>(d->sensordata + imu_gyro_);
+      imu.acceleration_I = Eigen::Map<const Eigen::Vector3d>(d->sensordata + imu_acc_);
+    }
   }
 
   /// Creates the GL context and MuJoCo's renderer once; false (status set) when impossible.
@@ -985,6 +1004,7 @@ class MujocoRobot final : public Robot {
   std::vector<JointMap> joints_;
   std::array<int, 2> ft_sites_{{-1, -1}};
   std::array<int, 2> ft_force_{{-1, -1}};
+  int imu_quat_ = -1, imu_gyro_ = -1, imu_acc_ = -1;  ///< sensordata addresses, -1: no IMU
   std::array<int, 2> ft_torque_{{-1, -1}};
   std::array<int, 2> camera_ids_{{-1, -1}};
   std::array<BodyFrame, 2> soles_;

@@ -81,6 +81,14 @@ inline void check_robot_against_model(const RobotDescription& robot, const mjMod
       }
     }
   }
+  if (!robot.imu_site.empty()) {
+    require(id(mjOBJ_SITE, robot.imu_site) >= 0, "IMU site", robot.imu_site, mjOBJ_SITE, m.nsite,
+            all);
+    for (const char* suffix : {"_quat", "_gyro", "_acc"}) {
+      require(id(mjOBJ_SENSOR, robot.imu_site + suffix) >= 0, "IMU sensor", robot.imu_site + suffix,
+              mjOBJ_SENSOR, m.nsensor, all);
+    }
+  }
   if (!robot.cameras[0].empty()) {
     for (const std::string& camera : robot.cameras) {
       require(id(mjOBJ_CAMERA, camera) >= 0, "camera", camera, mjOBJ_CAMERA, m.ncam, all);

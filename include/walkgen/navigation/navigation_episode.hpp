@@ -66,6 +66,9 @@ enum class NavigationStatus : std::uint8_t {
   diverged,            ///< the simulation diverged
   timed_out,           ///< the time limit passed first
   render_unavailable,  ///< the cameras cannot render (no GL context): nothing was run
+  /// the loop stopped the walk for a fault (LoopStatus::fault: an IK failure streak, a sensor
+  /// fault, ...; the message says which)
+  fault,
 };
 
 /// The enumerator's name ("reached", ...), e.g. for logs; "unknown" for a value out of range.
@@ -81,6 +84,8 @@ constexpr const char* to_string(NavigationStatus status) noexcept {
       return "diverged";
     case NavigationStatus::timed_out:
       return "timed_out";
+    case NavigationStatus::fault:
+      return "fault";
     case NavigationStatus::render_unavailable:
       return "render_unavailable";
   }
@@ -121,11 +126,13 @@ inline std::vector<int> obstacle_geoms(const MujocoRobot& robot) {
   return ids;
 }
 
-/// An episode that the robot ended (fallen or diverged, LoopTick::status), with its message.
+/// An episode that the robot ended (fallen or diverged, LoopTick::status) or the loop stopped
+/// for a fault, with its message.
 inline void set_stopped(NavigationResult& result, const LoopTick& tick) {
-  result.status =
-      tick.status == LoopStatus::diverged ? NavigationStatus::diverged : NavigationStatus::fallen;
-  result.fell = true;
+  result.status = tick.status == LoopStatus::diverged ? NavigationStatus::diverged
+                  : tick.status == LoopStatus::fault  ? NavigationStatus::fault
+                                                      : NavigationStatus::fallen;
+  result.fell = tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged;
   result.message = tick.message;
 }
 
@@ -229,7 +236,8 @@ inline NavigationResult run_navigation_episode(const NavigationScene& scene,
     if (options.on_tick) options.on_tick(robot, t);
     result.time = robot.output().time - t0;
     result.final_distance = (true_com(robot) - scene.target).norm();
-    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged) {
+    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged ||
+        tick.status == LoopStatus::fault) {
       detail::set_stopped(result, tick);
       break;
     }

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -76,12 +77,31 @@ struct ForceTorqueReading {
   Eigen::Isometry3d pose_W_S = Eigen::Isometry3d::Identity();
 };
 
+/// One inertial measurement unit on the robot's base or torso (MuJoCo: a site with the sensors
+/// "<site>_quat" (framequat), "<site>_gyro" and "<site>_acc").
+struct ImuReading {
+  bool available = false;  ///< false: the robot has no IMU and the rest is unset
+  /// The IMU frame I in the world (its tilt is the angle between I's z axis and W's).
+  Eigen::Quaterniond orientation_W_I = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d angular_velocity_I = Eigen::Vector3d::Zero();  ///< [rad/s] gyroscope, in I
+  /// [m/s^2] accelerometer (specific force: acceleration minus gravity), in I: +g along z at
+  /// rest and upright.
+  Eigen::Vector3d acceleration_I = Eigen::Vector3d::Zero();
+
+  /// [rad] the angle between the IMU's z axis and the world's vertical.
+  double tilt() const {
+    const double c = (orientation_W_I * Eigen::Vector3d::UnitZ()).z();
+    return std::acos(std::clamp(c, -1.0, 1.0));
+  }
+};
+
 /// Everything a robot measures, at one instant.
 struct RobotOutput {
   double time = 0.0;                     ///< [s] since reset()
   Eigen::VectorXd q;                     ///< measured joint positions [rad], joint_names() order
   Eigen::VectorXd dq;                    ///< measured joint velocities [rad/s], same order
   std::array<ForceTorqueReading, 2> ft;  ///< ankle sensors, indexed by Foot (left, right)
+  ImuReading imu;                        ///< the base's or torso's IMU, when the robot has one
   double base_height = 0.0;              ///< [m] height of the floating base (root link) in W
   /// Joint torques [N m] of the last physics step, joint_names order: what the motors of a
   /// torque-controlled robot applied (after clamping), the servos' force for position servos.

@@ -70,7 +70,9 @@ struct RobotDescription {
   std::array<std::string, 2> ft_sensor_frames;
   double ft_sensor_height = 0.0;       ///< [m] d of eq. 2.11-2.12
   std::array<std::string, 2> cameras;  ///< MJCF cameras of the stereo pair. Optional.
-  std::string base_body;               ///< the floating base (URDF root link, MJCF body)
+  /// The MJCF site of the IMU (sensors "<site>_quat", "<site>_gyro", "<site>_acc"). Optional.
+  std::string imu_site;
+  std::string base_body;  ///< the floating base (URDF root link, MJCF body)
   /// The upper body whose orientation the IK holds upright (empty: the base's only).
   std::string torso_body;
   std::string stand_keyframe;  ///< MJCF keyframe holding the standing posture
@@ -214,6 +216,7 @@ inline RobotDescription walkgen_humanoid_description() {
   d.ft_sensor_frames = {{"l_foot_ft_sensor", "r_foot_ft_sensor"}};
   d.ft_sensor_height = 0.03;
   d.cameras = {{"left_camera", "right_camera"}};
+  d.imu_site = "imu";
   d.base_body = "root_link";
   d.torso_body = "chest";
   d.stand_keyframe = "stand";

@@ -113,7 +113,8 @@ struct TaskRow {
 struct TaskResult {
   bool reached = false;  ///< the steering stopped, and the true CoM is within kTaskReachDistance
   bool stopped = false;  ///< the steering reported the target reached
-  LoopStatus status = LoopStatus::ok;  ///< ok unless the robot fell/diverged
+  LoopStatus status =
+      LoopStatus::ok;  ///< ok unless the robot fell/diverged or a fault stopped the walk
   std::string message;
   double final_distance = 0.0;  ///< true CoM to the target's centre [m]
   double time = 0.0;            ///< simulated [s], transfer excluded
@@ -249,7 +250,8 @@ inline TaskResult run_task(
       result.rows[k].com_true = com;
     }
     if (on_tick) on_tick(robot, loop, result);
-    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged) {
+    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged ||
+        tick.status == LoopStatus::fault) {
       result.status = tick.status;
       result.message = tick.message;
       break;

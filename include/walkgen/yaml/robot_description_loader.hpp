@@ -8,7 +8,8 @@
 ///   and torso_body (held upright by the IK);
 ///   joints (required): the actuated joints the walking controller commands, in order;
 ///   sole_frames (required), ft_sensor_frames, cameras: [left, right] frame or camera names;
-///   ft_sensor_height [m] (with ft_sensor_frames); frames: {name: {body, xyz, rpy}} added to
+///   ft_sensor_height [m] (with ft_sensor_frames); imu_site (sensors "<site>_quat", "_gyro",
+///   "_acc" in the MJCF); frames: {name: {body, xyz, rpy}} added to
 ///   bodies of the model (e.g. soles of a model without sites); stand_keyframe;
 ///   stand_pose: {joint: angle [rad]}; joint_groups: {group: {joints: [..], kp, kd, held}}
 ///   (feedback gains of a torque-controlled robot; held: true keeps the group at its stand pose);
@@ -68,6 +69,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
                                       "ft_sensor_frames",
                                       "ft_sensor_height",
                                       "cameras",
+                                      "imu_site",
                                       "frames",
                                       "stand_keyframe",
                                       "stand_pose",
@@ -124,6 +126,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
                    "ft_sensor_height only with ft_sensor_frames", "it alone");
   }
   if (root["cameras"]) d.cameras = pair(value("cameras"));
+  if (root["imu_site"]) d.imu_site = text(value("imu_site"));
   if (root["frames"]) {
     const YamlValue frames = value("frames");
     frames.check(frames.node.IsMap(), "a map {name: {body: .., xyz: [..], rpy: [..]}}");

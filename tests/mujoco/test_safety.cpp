@@ -1,0 +1,484 @@
+// Issue 24 item 4, label safety: the closed loop's safety state machine (docs/safety.md) with
+// walkgen's humanoid in MuJoCo. Each fault (a QP failure streak, an IK failure streak, an
+// unreachable CoM height, non-finite or out-of-range joint, force or IMU readings, torque
+// saturation, a fall told by the IMU) ends in its documented safe state with its status and
+// reason, never with an exception, never with a stale plan walked on; a requested stop finishes
+// the step and stands the robot on both feet.
+//
+// The physics is MuJoCo's throughout. Where a fault cannot be produced physically on this robot
+// (its position servos never saturate; its sensors do not fail) a FaultyRobot reports the
+// MujocoRobot's measurement with the fault written into it, and a FailingIk stops converging on
+// request: the loop sees exactly what a faulty robot or solver would hand it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "walkgen/simulation/simulated_tasks.hpp"
+
+namespace {
+
+using walkgen::LoopMode;
+using walkgen::LoopStatus;
+using walkgen::StopReason;
+
+const double kNan = std::numeric_limits<double>::quiet_NaN();
+const double kNominalBase = 0.5062;  // [m] the humanoid's standing base height
+
+const walkgen::KinematicTree<double>& tree() {
+  static const walkgen::KinematicTree<double> t = walkgen::humanoid_tree();
+  return t;
+}
+
+/// What FaultyRobot writes into the measurement from its fault time on.
+enum class Fault {
+  none,
+  nan_joint,           ///< a knee angle reads NaN
+  joint_out_of_range,  ///< a knee angle reads 10 rad
+  nan_joint_velocity,  ///< a hip velocity reads NaN
+  nan_force,           ///< the right force sensor's f_z reads NaN
+  huge_force,          ///< the right force sensor reads 1 MN
+  nan_imu,             ///< the IMU's gyroscope reads NaN about x
+  imu_out_of_range,    ///< the IMU's accelerometer reads 100 g
+  saturating,          ///< 7 more clamped motor torques every step
+};
+
+const char* name(Fault f) {
+  switch (f) {
+    case Fault::none:
+      return "none";
+    case Fault::nan_joint:
+      return "nan_joint";
+    case Fault::joint_out_of_range:
+      return "joint_out_of_range";
+    case Fault::nan_joint_velocity:
+      return "nan_joint_velocity";
+    case Fault::nan_force:
+      return "nan_force";
+    case Fault::huge_force:
+      return "huge_force";
+    case Fault::nan_imu:
+      return "nan_imu";
+    case Fault::imu_out_of_range:
+      return "imu_out_of_range";
+    case Fault::saturating:
+      return "saturating";
+  }
+  return "unknown";
+}
+
+/// A MujocoRobot whose reported measurement carries a fault from `at` seconds on; commands,
+/// physics and images are the MujocoRobot's.
+class FaultyRobot final : public walkgen::Robot {
+ public:
+  explicit FaultyRobot(walkgen::MujocoRobot& inner) : inner_(inner) { refresh(); }
+
+  void inject(Fault fault, double at) {
+    fault_ = fault;
+    at_ = at;
+  }
+
+  const walkgen::RobotInfo& info() const override { return inner_.info(); }
+  walkgen::JointCommandStatus set_joint_targets(
+      const Eigen::Ref<const Eigen::VectorXd>& q) override {
+    return inner_.set_joint_targets(q);
+  }
+  walkgen::RobotStatus step(double duration) override {
+    const walkgen::RobotStatus s = inner_.step(duration);
+    refresh();
+    return s;
+  }
+  const walkgen::RobotOutput& output() const override { return out_; }
+  const walkgen::StereoImages& render_cameras() override { return inner_.render_cameras(); }
+  void reset() override {
+    inner_.reset();
+    extra_saturations_ = 0;
+    refresh();
+  }
+
+  int joint(const std::string& joint_name) const {
+    const auto& names = info().joint_names;
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      if (names[j] == joint_name) return int(j);
+    }
+    ADD_FAILURE() << "no joint " << joint_name;
+    return 0;
+  }
+
+ private:
+  void refresh() {
+    out_ = inner_.output();
+    if (fault_ == Fault::none || out_.time < at_) return;
+    switch (fault_) {
+      case Fault::none:
+        break;
+      case Fault::nan_joint:
+        out_.q[joint("l_knee")] = kNan;
+        break;
+      case Fault::joint_out_of_range:
+        out_.q[joint("l_knee")] = 10.0;
+        break;
+      case Fault::nan_joint_velocity:
+        out_.dq[joint("r_hip_pitch")] = kNan;
+        break;
+      case Fault::nan_force:
+        out_.ft[1].force_S.z() = kNan;
+        break;
+      case Fault::huge_force:
+        out_.ft[1].force_S.z() = 1e6;
+        break;
+      case Fault::nan_imu:
+        out_.imu.angular_velocity_I.x() = kNan;
+        break;
+      case Fault::imu_out_of_range:
+        out_.imu.acceleration_I.z() = 981.0;
+        break;
+      case Fault::saturating:
+        extra_saturations_ += 7;
+        break;
+    }
+    out_.saturations += extra_saturations_;
+  }
+
+  walkgen::MujocoRobot& inner_;
+  walkgen::RobotOutput out_;
+  Fault fault_ = Fault::none;
+  double at_ = 0.0;
+  long extra_saturations_ = 0;
+};
+
+/// The humanoid's Ceres IK that stops converging while `failing` (nothing solved, the previous
+/// solution kept: what CeresInverseKinematics does when it does not converge).
+struct FailingIk {
+  explicit FailingIk(const walkgen::KinematicTree<double>& t) : ik(t) {}
+  const walkgen::KinematicTree<double>& tree() const { return ik.tree(); }
+  void set_initial_guess(const Eigen::Vector3d& p, const Eigen::Matrix3d& R,
+                         const Eigen::VectorXd& q) {
+    ik.set_initial_guess(p, R, q);
+  }
+  walkgen::IkResult solve(const walkgen::IkTarget& target) {
+    if (!failing) return ik.solve(target);
+    walkgen::IkResult r;
+    r.status = walkgen::IkStatus::not_converged;
+    r.message = "injected";
+    return r;
+  }
+  const Eigen::VectorXd& q() const { return ik.q(); }
+
+  walkgen::HumanoidIk ik;
+  bool failing = false;
+};
+
+/// Every number a sample reports is finite.
+bool finite(const walkgen::LoopSample& s) {
+  const auto& p = s.plan;
+  bool ok = p.com_x.allFinite() && p.com_y.allFinite() && p.com_q.allFinite() &&
+            std::isfinite(p.com_z) && std::isfinite(p.zmp_x) && std::isfinite(p.zmp_y) &&
+            s.zmp.zmp_W.allFinite() && std::isfinite(s.zmp.normal_force) &&
+            s.com_measured_W.allFinite() && std::isfinite(s.base_height);
+  for (const auto& f : s.ft) {
+    ok = ok && f.force_S.allFinite() && f.torque_S.allFinite() && f.pose_W_S.matrix().allFinite();
+  }
+  return ok;
+}
+
+/// The true robot (MuJoCo) stands on both feet with its CoM over the middle of its soles.
+void expect_standing_on_both_feet(walkgen::MujocoRobot& robot) {
+  const walkgen::RobotOutput& m = robot.output();
+  EXPECT_EQ(m.status, walkgen::RobotStatus::ok) << m.message;
+  EXPECT_GT(m.base_height, 0.9 * kNominalBase);
+  const walkgen::MeasuredZmp zmp = walkgen::measured_zmp(m.ft, robot.info().ft_sensor_height);
+  EXPECT_TRUE(zmp.in_contact[0] && zmp.in_contact[1]) << "not on both feet";
+  const Eigen::Vector2d middle =
+      (m.ft[0].pose_W_S.translation() + m.ft[1].pose_W_S.translation()).head<2>() / 2.0;
+  EXPECT_LT((walkgen::true_com(robot) - middle).norm(), 0.02)
+      << "CoM " << walkgen::true_com(robot).transpose() << ", middle " << middle.transpose();
+}
+
+/// Walks `ticks` ticks forward at 0.03 m/s; all must be ok.
+template <typename Loop>
+void walk(Loop& loop, int ticks) {
+  ASSERT_EQ(loop.set_command({0.03, 0.0, 0.0}), walkgen::CommandStatus::accepted);
+  for (int k = 0; k < ticks; ++k) {
+    const walkgen::LoopTick& t = loop.tick();
+    ASSERT_EQ(t.status, LoopStatus::ok) << "tick " << k << ": " << t.message;
+    ASSERT_EQ(t.mode, LoopMode::walking);
+  }
+}
+
+// walking → stopping → stopped: the step ends along the plan, the CoM moves between the feet in
+// transfer_time, then the joints are held; start() walks on.
+TEST(Safety, ARequestedStopFinishesTheStepAndStandsTheRobotOnBothFeet) {
+  walkgen::MujocoRobot robot;
+  walkgen::HumanoidIk ik(tree());
+  const walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  walkgen::SimLoop loop(settings, robot, ik);
+  ASSERT_EQ(loop.start().status, LoopStatus::ok);
+  walk(loop, 11);  // 4.4 s: into the second step's single support
+  EXPECT_EQ(loop.request_stop(), LoopMode::stopping);
+  // At most the rest of a step, then transfer_time (2 s), in ticks of t = 0.4 s.
+  const int bound = int(std::ceil((settings.t_step + 2.0) / settings.t)) + 1;
+  int ticks = 0;
+  double worst_margin = 1.0;
+  while (loop.mode() != LoopMode::stopped && ticks < bound) {
+    const walkgen::LoopTick& t = loop.tick();
+    ++ticks;
+    ASSERT_EQ(t.status, LoopStatus::ok) << t.message;
+    EXPECT_EQ(t.reason, StopReason::requested);
+    EXPECT_EQ(t.ik_failures, 0);
+    for (const auto& s : loop.samples()) {
+      const walkgen::MeasuredZmp truth = walkgen::measured_zmp(s.ft, robot.info().ft_sensor_height);
+      if (!truth.valid) continue;
+      worst_margin = std::min(
+          worst_margin, walkgen::support_polygon_margin(truth, s.ft, robot.info().ft_sensor_height,
+                                                        settings.foot_length, settings.foot_width));
+    }
+  }
+  ASSERT_EQ(loop.mode(), LoopMode::stopped) << "not stopped after " << ticks << " ticks";
+  std::printf("stopped after %d ticks; worst ZMP margin in the support polygon %.1f mm\n", ticks,
+              1e3 * worst_margin);
+  EXPECT_GE(worst_margin, 0.0) << "the measured ZMP left the support polygon while stopping";
+  // Held: ten more ticks (4 s) on both feet, still.
+  const Eigen::Vector2d com = walkgen::true_com(robot);
+  for (int k = 0; k < 10; ++k) {
+    const walkgen::LoopTick& t = loop.tick();
+    ASSERT_EQ(t.status, LoopStatus::ok) << t.message;
+    EXPECT_EQ(t.mode, LoopMode::stopped);
+    EXPECT_EQ(t.reason, StopReason::requested);
+    EXPECT_EQ(loop.samples().size(), 40u);
+  }
+  EXPECT_LT((walkgen::true_com(robot) - com).norm(), 0.002);
+  expect_standing_on_both_feet(robot);
+  // Walks on.
+  const walkgen::LoopTick& started = loop.start();
+  ASSERT_EQ(started.status, LoopStatus::ok) << started.message;
+  EXPECT_EQ(started.reason, StopReason::none);
+  walk(loop, 5);
+}
+
+// Issue 24: "after a kick every later QP is infeasible; the loop keeps walking the last shifted
+// plan". An obstacle dropped around the robot makes every QP infeasible: the loop walks the
+// shifted plan for at most max_qp_failures - 1 ticks, then only to finish the step, and stands.
+TEST(Safety, AQpFailureStreakStopsTheWalkWithoutWalkingOnAStalePlan) {
+  walkgen::MujocoRobot robot;
+  walkgen::HumanoidIk ik(tree());
+  walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  settings.obstacles.push_back({50.0, 50.0, 0.1, 0.1});  // far away: reserves a row
+  walkgen::SimLoop loop(settings, robot, ik);
+  ASSERT_EQ(loop.start().status, LoopStatus::ok);
+  walk(loop, 6);
+  const std::vector<walkgen::CircleObstacle<double>> trap = {{0.1, 0.0, 0.6, 0.1}};
+  loop.mpc().set_obstacles(trap);
+  const int max_failures = loop.settings().max_qp_failures;
+  int stale_walking = 0, ticks = 0;
+  while (loop.mode() != LoopMode::stopped && loop.mode() != LoopMode::fault && ticks < 30) {
+    const walkgen::LoopTick& t = loop.tick();
+    ++ticks;
+    if (t.mode == LoopMode::walking) {
+      EXPECT_EQ(t.status, LoopStatus::qp_failed) << t.message;
+      EXPECT_EQ(t.mpc, walkgen::MpcStatus::qp_failed);
+      ++stale_walking;
+    } else {
+      EXPECT_EQ(t.status, LoopStatus::fault) << t.message;
+      EXPECT_EQ(t.reason, StopReason::qp_failures);
+      EXPECT_NE(t.message.find("QP failed"), std::string::npos) << t.message;
+    }
+    for (const auto& s : loop.samples()) EXPECT_TRUE(finite(s));
+  }
+  std::printf("QP failures: %d stale ticks walking, stopped after %d ticks\n", stale_walking,
+              ticks);
+  EXPECT_EQ(stale_walking, max_failures - 1);
+  ASSERT_EQ(loop.mode(), LoopMode::stopped) << loop.last_tick().message;
+  EXPECT_EQ(loop.reason(), StopReason::qp_failures);
+  for (int k = 0; k < 5; ++k) {  // held: no NMPC runs
+    const walkgen::LoopTick& t = loop.tick();
+    EXPECT_EQ(t.status, LoopStatus::fault);
+    EXPECT_EQ(t.mode, LoopMode::stopped);
+    EXPECT_EQ(t.qp_failure_streak, 0);
+  }
+  expect_standing_on_both_feet(robot);
+}
+
+// Issue 24: "160 IK failures → falls while reporting ok". A streak of max_ik_failures command
+// periods without an IK solution holds the last solution (LoopMode::fault) and says so.
+TEST(Safety, AnIkFailureStreakHoldsTheLastSolution) {
+  walkgen::MujocoRobot robot;
+  FailingIk ik(tree());
+  walkgen::WalkingLoop<16, FailingIk> loop(walkgen::heicub_settings(), robot, ik);
+  ASSERT_EQ(loop.start().status, LoopStatus::ok);
+  walk(loop, 5);
+  ik.failing = true;
+  const walkgen::LoopTick& t = loop.tick();
+  EXPECT_EQ(t.status, LoopStatus::fault);
+  EXPECT_EQ(t.mode, LoopMode::fault);
+  EXPECT_EQ(t.reason, StopReason::ik_failures);
+  EXPECT_NE(t.message.find("IK"), std::string::npos) << t.message;
+  // Exactly max_ik_failures samples tried the IK; the rest of the tick held.
+  EXPECT_EQ(t.ik_failures, loop.settings().max_ik_failures);
+  const Eigen::VectorXd held = robot.output().q;
+  for (int k = 0; k < 10; ++k) {  // 4 s held
+    const walkgen::LoopTick& h = loop.tick();
+    EXPECT_EQ(h.status, LoopStatus::fault);
+    EXPECT_EQ(h.mode, LoopMode::fault);
+    EXPECT_EQ(h.ik_failures, 0);  // no IK is asked while holding
+    for (const auto& s : loop.samples()) EXPECT_TRUE(finite(s));
+  }
+  EXPECT_EQ(robot.output().status, walkgen::RobotStatus::ok) << robot.output().message;
+  EXPECT_GT(robot.output().base_height, 0.9 * kNominalBase);
+  EXPECT_LT((robot.output().q - held).cwiseAbs().maxCoeff(), 0.02);  // the joints held
+}
+
+// Issue 24: "an unreachable CoM height → stands still reporting ok". The CoM at 0.8 m (the
+// standing CoM is at about 0.47 m; the legs are 0.46 m long): start() ends in a fault.
+TEST(Safety, AnUnreachableComHeightIsAFaultNotAStandstillReportedOk) {
+  walkgen::MujocoRobot robot;
+  walkgen::HumanoidIk ik(tree());
+  walkgen::WalkingSettings<double> settings = walkgen::heicub_settings();
+  settings.com_z = 0.8;
+  walkgen::SimLoop loop(settings, robot, ik);
+  const walkgen::LoopTick& started = loop.start();
+  EXPECT_EQ(started.status, LoopStatus::fault);
+  EXPECT_EQ(started.mode, LoopMode::fault);
+  EXPECT_EQ(started.reason, StopReason::ik_failures);
+  EXPECT_NE(started.message.find("com_z"), std::string::npos) << started.message;
+  EXPECT_LT(robot.output().time, 2.0);  // gave up before the end of the transfer
+  for (int k = 0; k < 5; ++k) {
+    const walkgen::LoopTick& t = loop.tick();
+    EXPECT_EQ(t.status, LoopStatus::fault);
+    EXPECT_EQ(t.mode, LoopMode::fault);
+    EXPECT_EQ(t.mpc, walkgen::MpcStatus::solved);  // not run
+    for (const auto& s : loop.samples()) EXPECT_TRUE(finite(s));
+  }
+  EXPECT_GT(robot.output().base_height, 0.95 * kNominalBase);
+  EXPECT_EQ(loop.ticks(), 0);
+}
+
+/// The humanoid in MuJoCo behind a FaultyRobot (no fault yet), walking forward for 4 ticks.
+struct FaultyWalk {
+  FaultyWalk() {
+    EXPECT_EQ(loop.start().status, LoopStatus::ok);
+    walk(loop, 4);
+  }
+  walkgen::MujocoRobot mujoco;
+  FaultyRobot robot{mujoco};
+  walkgen::HumanoidIk ik{tree()};
+  walkgen::SimLoop loop{walkgen::heicub_settings(), robot, ik};
+};
+
+class SensorFault : public ::testing::TestWithParam<Fault> {};
+
+// Issue 24: "NaN feedback → the tick throws on every retry". A non-finite or out-of-range
+// measurement is a sensor fault: the joint targets are held, the samples report zeros instead of
+// the faulty values, nothing throws, and the message names the reading.
+TEST_P(SensorFault, HoldsTheJointTargetsAndNamesTheReading) {
+  FaultyWalk w;
+  walkgen::MujocoRobot& mujoco = w.mujoco;
+  FaultyRobot& robot = w.robot;
+  walkgen::SimLoop& loop = w.loop;
+  robot.inject(GetParam(), robot.output().time + 0.2);  // mid-tick
+  const walkgen::LoopTick& t = loop.tick();
+  EXPECT_EQ(t.status, LoopStatus::fault);
+  EXPECT_EQ(t.mode, LoopMode::fault);
+  EXPECT_EQ(t.reason, StopReason::sensor_fault);
+  const Fault fault = GetParam();
+  const std::string expected =
+      fault == Fault::nan_joint || fault == Fault::joint_out_of_range ? "l_knee"
+      : fault == Fault::nan_joint_velocity                            ? "r_hip_pitch"
+      : fault == Fault::nan_imu || fault == Fault::imu_out_of_range   ? "IMU"
+                                                                      : "right force sensor";
+  EXPECT_NE(t.message.find(expected), std::string::npos) << t.message;
+  ASSERT_EQ(loop.samples().size(), 40u);
+  int faulty = 0;
+  for (const auto& s : loop.samples()) {
+    EXPECT_TRUE(finite(s));
+    faulty += !s.sensors_ok;
+  }
+  EXPECT_GE(faulty, 15);  // from 0.2 s of the 0.4 s tick on
+  EXPECT_LE(faulty, 25);
+  for (int k = 0; k < 5; ++k) {
+    const walkgen::LoopTick& h = loop.tick();
+    EXPECT_EQ(h.status, LoopStatus::fault);
+    EXPECT_EQ(h.mode, LoopMode::fault);
+    EXPECT_EQ(h.reason, StopReason::sensor_fault);
+    for (const auto& s : loop.samples()) {
+      EXPECT_TRUE(finite(s));
+      EXPECT_FALSE(s.sensors_ok);
+    }
+  }
+  EXPECT_EQ(mujoco.output().status, walkgen::RobotStatus::ok) << mujoco.output().message;
+  EXPECT_GT(mujoco.output().base_height, 0.9 * kNominalBase);
+  // start() refuses a faulty measurement before it moves anything.
+  const double time = mujoco.output().time;
+  const walkgen::LoopTick& restart = loop.start();
+  EXPECT_EQ(restart.status, LoopStatus::fault);
+  EXPECT_EQ(restart.reason, StopReason::sensor_fault);
+  EXPECT_EQ(mujoco.output().time, time);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Readings, SensorFault,
+    ::testing::Values(Fault::nan_joint, Fault::joint_out_of_range, Fault::nan_joint_velocity,
+                      Fault::nan_force, Fault::huge_force, Fault::nan_imu, Fault::imu_out_of_range),
+    [](const ::testing::TestParamInfo<Fault>& info) { return std::string(name(info.param)); });
+
+// Torque saturation: max_saturated_periods command periods in a row in which the robot reports
+// clamped motor torques stop the walk like a requested stop.
+TEST(Safety, TorqueSaturationStreakStopsTheWalk) {
+  FaultyWalk w;
+  walkgen::MujocoRobot& mujoco = w.mujoco;
+  FaultyRobot& robot = w.robot;
+  walkgen::SimLoop& loop = w.loop;
+  robot.inject(Fault::saturating, robot.output().time);
+  const walkgen::LoopTick& t = loop.tick();
+  EXPECT_EQ(t.status, LoopStatus::fault);
+  EXPECT_EQ(t.reason, StopReason::torque_saturation);
+  EXPECT_NE(t.message.find("clamped"), std::string::npos) << t.message;
+  int ticks = 1;
+  while (loop.mode() == LoopMode::stopping && ticks < 20) {
+    EXPECT_EQ(loop.tick().status, LoopStatus::fault);
+    ++ticks;
+  }
+  EXPECT_EQ(loop.mode(), LoopMode::stopped);
+  EXPECT_EQ(loop.reason(), StopReason::torque_saturation);
+  expect_standing_on_both_feet(mujoco);
+}
+
+// A fall is a fault: the IMU's tilt tells it (max_tilt) before the base has sunk to the robot's
+// own fall height; the loop stops at once, later ticks report the fall and run nothing, nothing
+// throws.
+TEST(Safety, AFallIsDetectedByTheImuAndNothingRunsAfterIt) {
+  walkgen::MujocoRobot robot;
+  walkgen::HumanoidIk ik(tree());
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  ASSERT_EQ(loop.start().status, LoopStatus::ok);
+  walk(loop, 5);
+  robot.data()->qvel[1] = 2.0;  // kicked sideways at 2 m/s
+  LoopStatus status = LoopStatus::ok;
+  for (int k = 0; k < 20 && status == LoopStatus::ok; ++k) status = loop.tick().status;
+  EXPECT_EQ(status, LoopStatus::fallen);
+  EXPECT_EQ(loop.mode(), LoopMode::fault);
+  EXPECT_EQ(loop.reason(), StopReason::fallen);
+  const double time = robot.output().time;
+  const double tilt = robot.output().imu.tilt();
+  std::printf(
+      "fall detected at t = %.3f s: tilt %.3f rad, base height %.3f m (fall height "
+      "%.3f m)\n",
+      time, tilt, robot.output().base_height, robot.info().fall_height);
+  EXPECT_GT(tilt, loop.settings().max_tilt);
+  EXPECT_LT(tilt, loop.settings().max_tilt + 0.05);  // caught within a command period
+  EXPECT_GT(robot.output().base_height, robot.info().fall_height);  // before the robot's check
+  EXPECT_EQ(robot.output().status, walkgen::RobotStatus::ok);
+  for (int k = 0; k < 3; ++k) {
+    const walkgen::LoopTick& t = loop.tick();
+    EXPECT_EQ(t.status, LoopStatus::fallen);
+    EXPECT_EQ(t.reason, StopReason::fallen);
+    EXPECT_NE(t.message.find("IMU tilts"), std::string::npos) << t.message;
+    EXPECT_TRUE(loop.samples().empty());
+  }
+  EXPECT_EQ(robot.output().time, time);  // nothing stepped
+  EXPECT_EQ(loop.request_stop(), LoopMode::fault);
+}
+
+}  // namespace
