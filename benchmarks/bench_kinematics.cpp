@@ -4,7 +4,8 @@
 // Ceres' automatic differentiation over the FK in Jets. Side by side, where KDL is installed
 // (Debian: liborocos-kdl-dev): KDL's ChainIkSolverPos_LMA on the two leg chains (root link to sole)
 // for the same samples, each leg warm-started from the previous sample. Per-solve medians and the
-// ratio are reported as counters (median_us, ratio_walkgen_over_kdl).
+// ratio are reported as counters (median_us, ratio_walkgen_over_kdl). And one update of the state
+// estimator (BM_BaseEstimatorUpdate).
 //   build/release/benchmarks/bench_kinematics --benchmark_filter=Ik
 #include <benchmark/benchmark.h>
 
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "walkgen/control/pattern_targets.hpp"
+#include "walkgen/estimation/base_estimator.hpp"
 #include "walkgen/humanoid/humanoid_ik.hpp"
 #include "walkgen/scenarios/walking_scenarios.hpp"
 
@@ -112,6 +114,30 @@ void BM_CenterOfMassJacobian(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_CenterOfMassJacobian);
+
+/// One state-estimator update (walkgen::BaseEstimator: predict, two sole corrections, a contact
+/// velocity correction, the CoM and its velocity): what the loop pays per command period for
+/// the estimate. The right foot alternates between contact and swing.
+void BM_BaseEstimatorUpdate(benchmark::State& state) {
+  const walkgen::RobotDescription robot = walkgen::walkgen_humanoid_description();
+  walkgen::BaseEstimator estimator(tree(), robot.joint_names,
+                                   walkgen::base_estimator_settings(robot));
+  walkgen::RobotOutput m;
+  m.q = Eigen::VectorXd::Zero(Eigen::Index(robot.joint_names.size()));
+  m.dq = Eigen::VectorXd::Constant(m.q.size(), 0.1);
+  m.imu.available = true;
+  m.imu.acceleration_I = Eigen::Vector3d(0.1, 0.0, 9.81);
+  m.ft[0].force_S.z() = 200.0;
+  if (estimator.reset(Eigen::Vector3d(0, 0, 0.5), m) != walkgen::EstimateStatus::ok)
+    throw std::runtime_error("BM_BaseEstimatorUpdate: reset failed");
+  long k = 0;
+  for (auto _ : state) {
+    m.ft[1].force_S.z() = (++k / 20) % 2 == 0 ? 200.0 : -5.0;
+    benchmark::DoNotOptimize(estimator.update(m, 0.01));
+    benchmark::DoNotOptimize(estimator.estimate().com_velocity_W.data());
+  }
+}
+BENCHMARK(BM_BaseEstimatorUpdate);
 
 /// One warm-started whole-body IK solve per command sample, walking through walk() in order,
 /// with the analytic residual Jacobian (the default) or Ceres' automatic differentiation.

@@ -23,14 +23,15 @@ declare -A allowed=(
   [kinematics]="core kinematics"
   [robot]="core model qp interpolation mpc robot"
   [mpc]="core model qp interpolation mpc"
-  [control]="core model qp interpolation kinematics robot mpc control"
+  [estimation]="core model qp interpolation kinematics robot mpc estimation"
+  [control]="core model qp interpolation kinematics robot mpc estimation control"
   [learning]="core model qp interpolation mpc learning"
   [scenarios]="core model qp interpolation mpc scenarios"
 )
 # Adapters: one backend each (walkgen::<name>); the application layer: built on adapters.
 adapters="ceres mujoco opencv torch urdf yaml"
 applications="humanoid simulation navigation"
-floors="core model qp interpolation kinematics robot mpc control learning scenarios"
+floors="core model qp interpolation kinematics robot mpc estimation control learning scenarios"
 for adapter in ${adapters}; do
   allowed[${adapter}]="${floors} ${adapter}"
 done

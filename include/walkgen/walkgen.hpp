@@ -9,6 +9,7 @@
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/estimation/base_estimator.hpp"
 #include "walkgen/interpolation/polynomial.hpp"
 #include "walkgen/interpolation/swing_foot.hpp"
 #include "walkgen/interpolation/trajectory.hpp"

@@ -1,7 +1,8 @@
 // Proves that forward kinematics, the centre of mass and both Jacobians never touch the heap
 // after the tree and its workspace are made (docs/design.md convention 6), including with an
 // expression for q and a Jacobian that is a block of a larger matrix; and so do the IK
-// residual, its Jacobian and its errors (kinematics/ik_residual.hpp).
+// residual, its Jacobian and its errors (kinematics/ik_residual.hpp), and the state estimator's
+// update (estimation/base_estimator.hpp), which runs every command period.
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 
 #include "support/count_allocations.hpp"
 #include "support/kinematics.hpp"
+#include "walkgen/estimation/base_estimator.hpp"
 #include "walkgen/kinematics/ik_residual.hpp"
 
 namespace {
@@ -68,6 +70,36 @@ TEST(KinematicTreeNoAlloc, IkResidualJacobianAndErrors) {
   });
   EXPECT_EQ(news, 0);
   EXPECT_TRUE(r.allFinite() && J.allFinite() && std::isfinite(error));
+}
+
+TEST(KinematicTreeNoAlloc, BaseEstimatorUpdate) {
+  std::mt19937 rng(5);
+  const walkgen_test::Tree tree(walkgen_test::random_tree(rng, 25));
+  walkgen::BaseEstimatorSettings settings;
+  settings.sole_links = {{"link7", "link11"}};
+  const std::vector<std::string>& joints = tree.joint_names();
+  walkgen::BaseEstimator estimator(tree, joints, settings);
+  walkgen::RobotOutput m;
+  m.q = walkgen_test::random_configuration(tree, rng);
+  m.dq = 0.1 * walkgen_test::random_configuration(tree, rng);
+  m.imu.available = true;
+  m.imu.orientation_W_I = Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()));
+  m.imu.angular_velocity_I = Eigen::Vector3d(0.1, -0.2, 0.05);
+  m.imu.acceleration_I = Eigen::Vector3d(0.3, 0.0, 9.9);
+  m.ft[0].force_S.z() = m.ft[1].force_S.z() = 100.0;  // both feet in contact
+  ASSERT_EQ(estimator.reset(Eigen::Vector3d(0.0, 0.0, 1.0), m), walkgen::EstimateStatus::ok);
+  walkgen::EstimateStatus status = walkgen::EstimateStatus::ok;
+  const long news = count_allocations([&] {
+    for (int k = 0; k < 10; ++k) {
+      m.ft[1].force_S.z() = k % 2 == 0 ? 100.0 : -5.0;  // the right foot lifts and lands
+      if (estimator.update(m, 0.01) != walkgen::EstimateStatus::ok)
+        status = walkgen::EstimateStatus::sensor_fault;
+    }
+  });
+  EXPECT_EQ(news, 0);
+  EXPECT_EQ(status, walkgen::EstimateStatus::ok);
+  EXPECT_TRUE(estimator.estimate().com_W.allFinite());
+  EXPECT_TRUE(estimator.estimate().com_velocity_W.allFinite());
 }
 
 }  // namespace

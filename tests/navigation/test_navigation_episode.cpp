@@ -32,7 +32,8 @@ TEST(NavigationEpisode, OptionsAreValidatedBeforeAnythingRuns) {
   walkgen_test::expect_rejected<O>(
       O(),
       {{[](O& o) { o.time_limit = -1.0; }, {"NavigationOptions.time_limit", ">= 0", "-1"}},
-       {[](O& o) { o.reach_distance = 0.0; }, {"NavigationOptions.reach_distance", "> 0", "0"}}});
+       {[](O& o) { o.reach_distance = 0.0; }, {"NavigationOptions.reach_distance", "> 0", "0"}},
+       {[](O& o) { o.max_restarts = -1; }, {"NavigationOptions.max_restarts", ">= 0", "-1"}}});
   O bad;
   bad.reach_distance = -0.3;
   const walkgen::NavigationScene scene =

@@ -48,6 +48,10 @@ struct NavigationOptions {
   /// the learner visits while the learner drives); else the executed command.
   NavigationPolicy label;
   std::function<void(MujocoRobot&, double)> on_tick;  ///< e.g. to render a video
+  /// When the loop stopped the robot because the NMPC found no plan (StopReason::qp_failures,
+  /// e.g. the person stepped in the way), the walk starts again from where the robot stands,
+  /// at most this often per episode; then the episode ends with NavigationStatus::fault.
+  int max_restarts = 5;
 };
 
 /// Checks how an episode runs (run_navigation_episode() calls this).
@@ -56,6 +60,8 @@ inline void validate(const NavigationOptions& o) {
   check_non_negative("NavigationOptions.time_limit", o.time_limit,
                      "a finite time limit >= 0 s (0: from the scene)");
   check_positive("NavigationOptions.reach_distance", o.reach_distance, "a finite distance > 0 m");
+  check_argument(o.max_restarts >= 0, "NavigationOptions.max_restarts", "a count >= 0",
+                 o.max_restarts);
 }
 
 /// How a navigation episode ended.
@@ -104,6 +110,7 @@ struct NavigationResult {
   std::vector<Eigen::Vector3d> commands;  ///< one per tick
   std::vector<double> zmp_distance;       ///< NMPC vs measured ZMP per valid sample [m]
   long qp_failures = 0;                   ///< ticks whose NMPC did not solve
+  int restarts = 0;            ///< walks started again after a stop for QP failures (max_restarts)
   long rejected_commands = 0;  ///< policy commands the loop rejected (non-finite): the last stays
 };
 
@@ -236,10 +243,22 @@ inline NavigationResult run_navigation_episode(const NavigationScene& scene,
     if (options.on_tick) options.on_tick(robot, t);
     result.time = robot.output().time - t0;
     result.final_distance = (true_com(robot) - scene.target).norm();
+    // A stop (stopping: the step is finished, the CoM moves between the feet) is ticked through;
+    // a walk stopped for QP failures starts again, any other fault or stop ends the episode.
+    const bool replan = tick.mode == LoopMode::stopped && tick.reason == StopReason::qp_failures &&
+                        result.restarts < options.max_restarts;
     if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged ||
-        tick.status == LoopStatus::fault) {
+        tick.mode == LoopMode::fault || (tick.mode == LoopMode::stopped && !replan)) {
       detail::set_stopped(result, tick);
       break;
+    }
+    if (replan) {
+      ++result.restarts;
+      const LoopTick& restarted = loop.start();
+      if (restarted.status != LoopStatus::ok) {
+        detail::set_stopped(result, restarted);
+        break;
+      }
     }
     if (detail::touches_any(robot.data(), forbidden)) {
       result.status = NavigationStatus::collided;
