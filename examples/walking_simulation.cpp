@@ -468,10 +468,7 @@ int main(int argc, char** argv) {
   summary.close();
   std::fflush(stdout);
   if (!no_plot) {
-    const std::string cmd = "/usr/bin/python3 " +
-                            walkgen_examples::shell_quote(std::string(WALKGEN_SOURCE_DIR) +
-                                                          "/python/plot_simulation.py") +
-                            " " + walkgen_examples::shell_quote(out_dir);
+    const std::string cmd = walkgen_examples::python_command("plot_simulation.py", out_dir);
     const int status = std::system(cmd.c_str());
     if (!succeeded(status)) {
       std::fprintf(stderr, "walking_simulation: plotting failed (%s): %s\n",

@@ -83,6 +83,15 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
+#ifdef WALKGEN_SOURCE_DIR  // defined for every program of walkgen_add_example
+/// The shell command that runs `script` of walkgen's python/ folder with Debian's Python (numpy,
+/// matplotlib) on `argument`, e.g. a plot of the CSV a program wrote.
+inline std::string python_command(const std::string& script, const std::string& argument) {
+  return "/usr/bin/python3 " + shell_quote(std::string(WALKGEN_SOURCE_DIR) + "/python/" + script) +
+         " " + shell_quote(argument);
+}
+#endif
+
 /// Parses the command line. Returns -1 when the program should go on; otherwise the exit status:
 /// 0 after --help (usage on stdout), 2 after a parse error (one line on stderr naming the program,
 /// the problem and --help).

@@ -1,0 +1,276 @@
+// Push recovery (issue 24 item 6): how hard a kick the walking robot survives, by direction and
+// gait phase. The closed loop (walkgen::SimLoop: NMPC, interpolation, IK, MuJoCo) walks forward
+// at 0.03 m/s; a force on the base for 0.1 s changes the robot's momentum by M Δv (M its whole
+// mass, so that the CoM's velocity changes by Δv); the walk goes on for 4 s after the push.
+// Survived: the loop reports no fall (the IMU's tilt, the base height) and the robot stands or
+// walks at the end (a safe stop for QP failures counts as survived: the robot is up).
+//
+//   push_recovery [--robot NAME] [--out DIR] [--max-dv V] [--dv-step V] [--directions LIST]
+//                 [--phases LIST] [--require-survival V] [--no-plot]
+//     --robot NAME          walkgen_humanoid (the G1 does not walk yet: issue 23)
+//     --out DIR             output folder, created if missing (default: .)
+//     --max-dv V            the largest velocity change [m/s] (default 0.6)
+//     --dv-step V           the sweep's step [m/s] (default 0.05)
+//     --directions LIST     forward, backward, left, right (default: all four)
+//     --phases LIST         ss_start, ss_middle, ss_end (of single support), ds (the middle of
+//                           double support) (default: all four)
+//     --require-survival V  exit 1 unless every kick up to V m/s was survived (for tests)
+//     --no-plot             CSV only (the plot needs /usr/bin/python3 with matplotlib)
+// The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option.
+//
+// Writes push_summary.csv (robot,direction,phase,delta_v,survived; one row per kick, written
+// atomically) and push_survival.png (python/plot_push_survival.py: the survival map). Prints a
+// line per kick and the largest survived kick per direction and phase. Exit status 0 when every
+// kick ran and the files were written (and --require-survival held), 1 otherwise, 2 on a bad
+// command line.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/cli.hpp"
+#include "walkgen/core/atomic_file.hpp"
+#include "walkgen/simulation/simulated_tasks.hpp"
+
+namespace {
+
+constexpr double kPushDuration = 0.1;  ///< [s] the issue's kick: a velocity change over 0.1 s
+constexpr double kAfter = 4.0;         ///< [s] walked after the push
+const Eigen::Vector3d kCommand(0.03, 0.0, 0.0);  ///< forward [m/s], sideways, yaw rate
+
+const walkgen::KinematicTree<double>& tree() {
+  static const walkgen::KinematicTree<double> t = walkgen::humanoid_tree();
+  return t;
+}
+
+/// A MujocoRobot whose base gets `force` [N] (world frame) from `at` for kPushDuration.
+class PushedRobot final : public walkgen::Robot {
+ public:
+  PushedRobot(walkgen::MujocoRobot& inner, const Eigen::Vector3d& force, double at)
+      : inner_(inner), force_(force), at_(at) {
+    base_ = mj_name2id(inner_.model(), mjOBJ_BODY, inner_.settings().base_body.c_str());
+  }
+  const walkgen::RobotInfo& info() const override { return inner_.info(); }
+  walkgen::JointCommandStatus set_joint_targets(
+      const Eigen::Ref<const Eigen::VectorXd>& q) override {
+    return inner_.set_joint_targets(q);
+  }
+  walkgen::RobotStatus step(double duration) override {
+    const double t = inner_.output().time;
+    const bool pushing = t >= at_ - 1e-9 && t < at_ + kPushDuration - 1e-9;
+    Eigen::Map<Eigen::Vector3d>(inner_.data()->xfrc_applied + 6 * base_) =
+        pushing ? force_ : Eigen::Vector3d::Zero();
+    return inner_.step(duration);
+  }
+  const walkgen::RobotOutput& output() const override { return inner_.output(); }
+  const walkgen::StereoImages& render_cameras() override { return inner_.render_cameras(); }
+  void reset() override { inner_.reset(); }
+
+ private:
+  walkgen::MujocoRobot& inner_;
+  Eigen::Vector3d force_;
+  double at_;
+  int base_ = -1;
+};
+
+/// When each phase's push starts [s], from a walk without pushes: in the second step's single
+/// support (the first is the walk's start) and the double support after it.
+struct PhaseTimes {
+  std::map<std::string, double> start;
+  std::string error;  // empty when found
+};
+
+PhaseTimes phase_times() {
+  walkgen::MujocoRobot robot;
+  walkgen::HumanoidIk ik(tree());
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  PhaseTimes p;
+  if (loop.start().status != walkgen::LoopStatus::ok ||
+      loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
+    p.error = "the unpushed walk did not start: " + loop.last_tick().message;
+    return p;
+  }
+  // Intervals of single support (ss) and double support (ds), in order.
+  std::vector<std::pair<bool, std::pair<double, double>>> intervals;  // (double support, [t0, t1])
+  for (int k = 0; k < 30 && intervals.size() < 6; ++k) {
+    if (loop.tick().status != walkgen::LoopStatus::ok) {
+      p.error = "the unpushed walk failed: " + loop.last_tick().message;
+      return p;
+    }
+    for (const auto& s : loop.samples()) {
+      if (intervals.empty() || intervals.back().first != s.plan.double_support) {
+        intervals.push_back({s.plan.double_support, {s.plan.time, s.plan.time}});
+      }
+      intervals.back().second.second = s.plan.time;
+    }
+  }
+  // The second complete single support and the double support after it.
+  int singles = 0;
+  for (std::size_t i = 1; i + 2 < intervals.size(); ++i) {  // [0] may be cut by the start
+    if (intervals[i].first || ++singles < 2) continue;
+    const auto [s0, s1] = intervals[i].second;
+    const auto [d0, d1] = intervals[i + 1].second;
+    p.start["ss_start"] = s0 + 0.05;
+    p.start["ss_middle"] = 0.5 * (s0 + s1) - 0.5 * kPushDuration;
+    p.start["ss_end"] = s1 - kPushDuration - 0.05;
+    p.start["ds"] = 0.5 * (d0 + d1) - 0.5 * kPushDuration;
+    return p;
+  }
+  p.error = "no complete single support in the unpushed walk";
+  return p;
+}
+
+/// One kick: true when the robot did not fall.
+bool survives(const Eigen::Vector3d& force, double at, std::string& how) {
+  walkgen::MujocoRobot mujoco;
+  PushedRobot robot(mujoco, force, at);
+  walkgen::HumanoidIk ik(tree());
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  if (loop.start().status != walkgen::LoopStatus::ok ||
+      loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
+    how = "did not start: " + loop.last_tick().message;
+    return false;
+  }
+  while (robot.output().time < at + kAfter) {
+    const walkgen::LoopTick& t = loop.tick();
+    if (t.status == walkgen::LoopStatus::fallen || t.status == walkgen::LoopStatus::diverged) {
+      how = t.message;
+      return false;
+    }
+    if (t.mode == walkgen::LoopMode::fault) {  // held: survived if it stays up
+      how = t.message;
+    }
+  }
+  if (how.empty()) how = to_string(loop.mode());
+  return robot.output().status == walkgen::RobotStatus::ok;
+}
+
+Eigen::Vector3d direction_vector(const std::string& d) {
+  if (d == "forward") return Eigen::Vector3d::UnitX();
+  if (d == "backward") return -Eigen::Vector3d::UnitX();
+  if (d == "left") return Eigen::Vector3d::UnitY();
+  return -Eigen::Vector3d::UnitY();  // right
+}
+
+bool succeeded(int status) { return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string robot_name = "walkgen_humanoid", out_dir = ".";
+  double max_dv = 0.6, dv_step = 0.05, required = 0.0;
+  bool no_plot = false;
+  std::vector<std::string> directions = {"forward", "backward", "left", "right"};
+  std::vector<std::string> phases = {"ss_start", "ss_middle", "ss_end", "ds"};
+  CLI::App app{
+      "Kicks the walking robot in MuJoCo (a force on the base for 0.1 s) in four directions at "
+      "four gait phases and sweeps the velocity change: push_summary.csv and a survival map",
+      "push_recovery"};
+  walkgen_examples::cli_defaults(app);
+  app.add_option("--robot", robot_name,
+                 "the robot: walkgen_humanoid (the G1 does not walk yet, issue 23)")
+      ->check(CLI::IsMember({"walkgen_humanoid"}));
+  app.add_option("--out", out_dir, "output folder, created if missing");
+  app.add_option("--max-dv", max_dv, "the largest velocity change of the sweep [m/s]")
+      ->check(CLI::Range(0.0, 5.0) & walkgen_examples::positive);
+  app.add_option("--dv-step", dv_step, "the step of the sweep [m/s]")
+      ->check(CLI::Range(0.0, 5.0) & walkgen_examples::positive);
+  app.add_option("--directions", directions, "kick directions (world frame; the robot walks +x)")
+      ->check(CLI::IsMember({"forward", "backward", "left", "right"}))
+      ->delimiter(',');
+  app.add_option("--phases", phases,
+                 "gait phases: start, middle, end of single support; middle of double support")
+      ->check(CLI::IsMember({"ss_start", "ss_middle", "ss_end", "ds"}))
+      ->delimiter(',');
+  app.add_option("--require-survival", required,
+                 "exit 1 unless every kick up to this velocity change was survived [m/s]")
+      ->check(CLI::Range(0.0, 5.0));
+  app.add_flag("--no-plot", no_plot,
+               "CSV only, no push_survival.png (plotting needs /usr/bin/python3 with matplotlib)");
+  WALKGEN_CLI_PARSE(app, argc, argv);
+
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) {
+    std::fprintf(stderr, "push_recovery: cannot create %s: %s\n", out_dir.c_str(),
+                 ec.message().c_str());
+    return 1;
+  }
+  const PhaseTimes times = phase_times();
+  if (!times.error.empty()) {
+    std::fprintf(stderr, "push_recovery: %s\n", times.error.c_str());
+    return 1;
+  }
+  walkgen::MujocoRobot probe;
+  const double mass = mj_getTotalmass(probe.model());
+  const int steps = int(std::floor(max_dv / dv_step + 1e-9));
+  std::printf(
+      "push_recovery: %s, %.2f kg, walking %.2f m/s; %zu directions x %zu phases x %d "
+      "kicks of %g..%g m/s over %g s\n",
+      robot_name.c_str(), mass, kCommand.x(), directions.size(), phases.size(), steps, dv_step,
+      steps * dv_step, kPushDuration);
+  struct Row {
+    std::string direction, phase;
+    double dv;
+    bool survived;
+  };
+  std::vector<Row> rows;
+  bool required_held = true;
+  for (const std::string& d : directions) {
+    for (const std::string& ph : phases) {
+      double best = 0.0;
+      bool fell = false;
+      for (int i = 1; i <= steps; ++i) {
+        const double dv = i * dv_step;
+        std::string how;
+        const bool ok =
+            survives(mass * dv / kPushDuration * direction_vector(d), times.start.at(ph), how);
+        rows.push_back({d, ph, dv, ok});
+        std::printf("  %-8s %-9s dv %.2f m/s: %s (%s)\n", d.c_str(), ph.c_str(), dv,
+                    ok ? "survived" : "FELL", how.c_str());
+        std::fflush(stdout);
+        if (ok && !fell) best = dv;
+        fell = fell || !ok;
+        if (!ok && dv <= required + 1e-9) required_held = false;
+      }
+      std::printf("%s at %s: survives up to %.2f m/s\n", d.c_str(), ph.c_str(), best);
+    }
+  }
+  const std::string csv = out_dir + "/push_summary.csv";
+  try {
+    walkgen::write_atomically(csv, [&](const std::string& temp) {
+      std::ofstream out(temp);
+      out << "robot,direction,phase,delta_v,survived\n";
+      for (const Row& r : rows) {
+        out << robot_name << ',' << r.direction << ',' << r.phase << ',' << r.dv << ','
+            << (r.survived ? 1 : 0) << '\n';
+      }
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + temp);
+    });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "push_recovery: %s\n", e.what());
+    return 1;
+  }
+  std::printf("push_recovery: wrote %s (%zu kicks)\n", csv.c_str(), rows.size());
+  std::fflush(stdout);
+  if (!no_plot) {
+    const std::string cmd = walkgen_examples::python_command("plot_push_survival.py", csv);
+    if (!succeeded(std::system(cmd.c_str()))) {
+      std::fprintf(stderr, "push_recovery: plotting failed: %s\n", cmd.c_str());
+      return 1;
+    }
+  }
+  if (!required_held) {
+    std::fprintf(stderr, "push_recovery: a kick of at most %g m/s was not survived\n", required);
+    return 1;
+  }
+  return 0;
+}
