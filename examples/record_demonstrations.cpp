@@ -102,9 +102,10 @@ int main(int argc, char** argv) {
     frames += recorder.samples();
     simulated += r.time;
     std::printf(
-        "episode %3d %-10s seed %u%s: %s after %5.1f s, %.2f m from the target, %ld frames%s%s\n",
+        "episode %3d %-10s seed %u%s: %s after %5.1f s, %.2f m from the target, %ld frames, %d "
+        "restart(s) after QP failures%s%s\n",
         e + 1, walkgen::to_string(task), scene.seed, perturbed ? " (perturbed)" : "",
-        r.reached ? "reached" : "FAILED ", r.time, r.final_distance, recorder.samples(),
+        r.reached ? "reached" : "FAILED ", r.time, r.final_distance, recorder.samples(), r.restarts,
         r.message.empty() ? "" : ": ", r.message.c_str());
     std::fflush(stdout);
   }

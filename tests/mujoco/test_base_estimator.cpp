@@ -273,8 +273,7 @@ TEST(BaseEstimator, FaultyReadingsKeepTheEstimateAndSaySo) {
   expect_invalid_argument([&] { (void)estimator.update(m, 0.0); }, {"dt", "> 0"});
   walkgen::RobotOutput fewer = m;
   fewer.q.conservativeResize(14);
-  expect_invalid_argument([&] { (void)estimator.update(fewer, 0.01); },
-                          {"RobotOutput q, dq", "15 values", "14, 15"});
+  EXPECT_EQ(estimator.update(fewer, 0.01), EstimateStatus::sensor_fault);
   walkgen::BaseEstimatorSettings s = walkgen::base_estimator_settings(humanoid_description());
   s.sole_links[1] = "r_shoe";
   expect_invalid_argument([&] { BaseEstimator(humanoid(), names, s); }, {"r_shoe"});

@@ -251,10 +251,22 @@ TEST(Safety, ARequestedStopFinishesTheStepAndStandsTheRobotOnBothFeet) {
   }
   EXPECT_LT((walkgen::true_com(robot) - com).norm(), 0.002);
   expect_standing_on_both_feet(robot);
-  // Walks on.
+  // Walks on in the generator's frame: the support sole where the plan put it (not back at the
+  // settings' start, 0.07 m left of the origin), the generator's CoM where MuJoCo's is.
+  const walkgen::FootPose<double> support = loop.mpc().state().support;
+  const walkgen::Foot support_foot = loop.mpc().state().support_foot;
+  EXPECT_GT(support.x, 0.05);  // it had walked
   const walkgen::LoopTick& started = loop.start();
   ASSERT_EQ(started.status, LoopStatus::ok) << started.message;
   EXPECT_EQ(started.reason, StopReason::none);
+  EXPECT_EQ(loop.mpc().state().support_foot, support_foot);
+  EXPECT_EQ(loop.mpc().state().support.x, support.x);
+  EXPECT_EQ(loop.mpc().state().support.y, support.y);
+  EXPECT_EQ(loop.mpc().state().support.q, support.q);
+  const Eigen::Vector2d planned_com(loop.mpc().state().com_x[0], loop.mpc().state().com_y[0]);
+  EXPECT_LT((planned_com - walkgen::true_com(robot)).norm(), 0.03)
+      << "generator CoM " << planned_com.transpose() << ", true "
+      << walkgen::true_com(robot).transpose();
   walk(loop, 5);
 }
 

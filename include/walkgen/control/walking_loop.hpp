@@ -95,7 +95,7 @@ constexpr const char* to_string(LoopStatus s) noexcept {
 
 /// Where the loop's safety state machine stands (docs/safety.md).
 enum class LoopMode : std::uint8_t {
-  idle,     ///< before start() (or after a start() that did not reach walking)
+  idle,     ///< before the first start()
   walking,  ///< the NMPC's plans are executed
   /// the current step is finished along the plan (velocity command zero), then the CoM moves
   /// between the feet in WalkingLoopSettings::transfer_time
@@ -357,7 +357,9 @@ class WalkingLoop {
   /// minimum-jerk path of WalkingLoopSettings::transfer_time with both feet where they are
   /// measured. Then the generator's state is set from the measurement (CoM from forward
   /// kinematics, the support sole at the settings' foot pose, the other foot where it is,
-  /// standing still) and the velocity command is zero. Also walks on from stopped or a fault.
+  /// standing still) and the velocity command is zero. Also walks on from stopped or a fault:
+  /// from stopped in the generator's frame (the support sole where the plan put it, so that
+  /// obstacles and poses keep their meaning), from a fault (or idle) at the settings' start.
   /// @return ok (LoopMode::walking); fallen / diverged when the robot stopped or its IMU tilts
   ///   beyond max_tilt (before or during the transfer); fault (LoopMode::fault) on a faulty
   ///   measurement or max_ik_failures command periods in a row without an IK solution (e.g. a CoM
@@ -365,6 +367,9 @@ class WalkingLoop {
   ///   samples whose IK did not converge (previous joints sent again).
   [[nodiscard]] const LoopTick& start() {
     begin_tick();
+    // From a stop the walk goes on in the generator's frame: the robot stands on the soles the
+    // plan put down (obstacles and poses keep their meaning); else from the settings' start.
+    const bool resume = mode_ == LoopMode::stopped;
     mode_ = LoopMode::idle;
     reason_ = StopReason::none;
     reason_message_.clear();
@@ -375,8 +380,9 @@ class WalkingLoop {
       return end_tick();
     }
     const WalkingSettings<double>& s = mpc_.settings();
-    const Foot support = s.support_foot;
-    const FootPose<double> support_pose{s.foot_x, s.foot_y, s.foot_q};
+    const Foot support = resume ? mpc_.state().support_foot : s.support_foot;
+    const FootPose<double> support_pose =
+        resume ? mpc_.state().support : FootPose<double>{s.foot_x, s.foot_y, s.foot_q};
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
     ik_.set_initial_guess(base_p_W_, base_R_W_, q_tree_);
@@ -387,7 +393,15 @@ class WalkingLoop {
     stand.support_foot = support;
     stand.time = robot_.output().time;
     const Eigen::Vector3d c0 = com_W();
-    const Eigen::Vector3d c1(s.com_x[0], s.com_y[0], s.com_z);
+    // The settings' initial CoM relative to their support foot, on `support` at support_pose
+    // (mirrored sideways for the other foot).
+    const Eigen::Vector2d offset =
+        (Eigen::Rotation2Dd(-s.foot_q) *
+         Eigen::Vector2d(s.com_x[0] - s.foot_x, s.com_y[0] - s.foot_y))
+            .cwiseProduct(Eigen::Vector2d(1.0, support == s.support_foot ? 1.0 : -1.0));
+    const Eigen::Vector2d c1_xy = Eigen::Vector2d(support_pose.x, support_pose.y) +
+                                  Eigen::Rotation2Dd(support_pose.q) * offset;
+    const Eigen::Vector3d c1(c1_xy.x(), c1_xy.y(), s.com_z);
     const double dt = interp_.command_period();
     const int n = std::max(1, int(std::lround(loop_.transfer_time / dt)));
     for (int k = 1; k <= n; ++k) {
@@ -473,7 +487,7 @@ class WalkingLoop {
       mpc_message = solved.message;
       qp_streak_ = solved.status == MpcStatus::qp_failed ? qp_streak_ + 1 : 0;
       tick_.qp_failure_streak = qp_streak_;
-      if (qp_streak_ >= loop_.max_qp_failures) {
+      if (qp_streak_ >= loop_.max_qp_failures && mode_ == LoopMode::walking) {
         begin_stop(StopReason::qp_failures, "the NMPC's QP failed " + std::to_string(qp_streak_) +
                                                 " ticks in a row (" + mpc_message +
                                                 "): stopping after the current step");
@@ -547,8 +561,8 @@ class WalkingLoop {
       case StopReason::none:
         tick_.status = mode_ == LoopMode::walking ? LoopStatus::ok : LoopStatus::not_started;
         break;
-      case StopReason::requested:
-        tick_.status = LoopStatus::ok;
+      case StopReason::requested:  // a requested stop that ended in a fault is not ok
+        tick_.status = mode_ == LoopMode::fault ? LoopStatus::fault : LoopStatus::ok;
         break;
       case StopReason::fallen:
         tick_.status = LoopStatus::fallen;
@@ -682,7 +696,7 @@ class WalkingLoop {
     const long saturations = robot_.output().saturations;
     saturated_streak_ = saturations > last_saturations_ ? saturated_streak_ + 1 : 0;
     last_saturations_ = saturations;
-    if (saturated_streak_ >= loop_.max_saturated_periods) {
+    if (saturated_streak_ >= loop_.max_saturated_periods && mode_ == LoopMode::walking) {
       begin_stop(StopReason::torque_saturation,
                  "motor torques clamped " + std::to_string(saturated_streak_) +
                      " command periods in a row: stopping after the current step");

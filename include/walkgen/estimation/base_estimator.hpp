@@ -46,7 +46,9 @@ struct BaseEstimatorSettings {
   /// The IMU's axes in the base link's frame (R_BI). The IMU is taken to sit at the base
   /// link's origin (walkgen's humanoid's and the G1's do): its lever arm is not modelled.
   Eigen::Matrix3d imu_rotation_B = Eigen::Matrix3d::Identity();
-  /// A foot is in contact from a normal force above contact_on_ratio × the robot's weight and
+  /// A foot is in contact from a normal force (the force reading turned into W by the sole's
+  /// orientation from leg kinematics: the sensor's axes are taken as the sole's) above
+  /// contact_on_ratio × the robot's weight and
   /// leaves contact below contact_off_ratio × weight (hysteresis: contact_off_ratio <
   /// contact_on_ratio).
   double contact_on_ratio = 0.15;
@@ -171,7 +173,8 @@ class BaseEstimator {
     kinematics(base_position_W);
     for (int f = 0; f < 2; ++f) {
       x_.segment<3>(6 + 3 * f) = ws_.position_W(sole_[f]);
-      contact_[std::size_t(f)] = normal_force(m, f) > settings_.contact_on_ratio * weight_;
+      contact_[std::size_t(f)] = (ws_.rotation_W(sole_[f]) * m.ft[std::size_t(f)].force_S).z() >
+                                 settings_.contact_on_ratio * weight_;
     }
     P_.setZero();
     P_.diagonal().setConstant(square(settings_.kinematics_noise));
@@ -183,26 +186,26 @@ class BaseEstimator {
 
   /// One filter step of `dt` seconds with the measurement taken at its end.
   /// @return ok; not_started before reset(); no_imu / sensor_fault (the estimate unchanged).
-  /// @throws walkgen::invalid_argument for dt not finite and > 0, or q, dq of the wrong size.
+  /// @throws walkgen::invalid_argument for dt not finite and > 0 (a programming error); q, dq
+  ///   of the wrong size are a malformed reading (sensor_fault).
   EstimateStatus update(const RobotOutput& m, double dt) {
     check_positive("BaseEstimator::update: dt", dt, "a duration > 0 [s]");
     if (!started_) return EstimateStatus::not_started;
     const EstimateStatus status = read(m);
     if (status != EstimateStatus::ok) return status;
+    // Leg kinematics of the measured joints with the IMU's orientation: the soles relative to
+    // the base (R_WB fk_f(q)) and their axes, whatever the base position.
+    kinematics(x_.segment<3>(0));
+    std::array<Eigen::Vector3d, 2> r;
     for (int f = 0; f < 2; ++f) {  // contacts, with hysteresis
-      const double fz = normal_force(m, f);
+      r[std::size_t(f)] = ws_.position_W(sole_[f]) - ws_.position_W(0);
+      const double fz = (ws_.rotation_W(sole_[f]) * m.ft[std::size_t(f)].force_S).z();
       bool& c = contact_[std::size_t(f)];
       c = c ? fz > settings_.contact_off_ratio * weight_
             : fz > settings_.contact_on_ratio * weight_;
     }
     predict(dt);
-    // Leg kinematics at the predicted base position (the relative positions do not depend on
-    // it; the velocities need only R and ω).
-    kinematics(x_.segment<3>(0));
-    for (int f = 0; f < 2; ++f) {
-      const Eigen::Vector3d r = ws_.position_W(sole_[f]) - x_.segment<3>(0);  // R_WB fk_f(q)
-      correct_sole(f, r);
-    }
+    for (int f = 0; f < 2; ++f) correct_sole(f, r[std::size_t(f)]);
     for (int f = 0; f < 2; ++f) {
       if (!contact_[std::size_t(f)]) continue;
       // The sole's velocity J_f (v, ω, q̇) is zero: v = −(J_f[ω] ω + J_f[q̇] q̇).
@@ -228,11 +231,7 @@ class BaseEstimator {
   /// The measurement into q_, dq_, R_WB_, omega_W_, acc_W_; no_imu / sensor_fault when unusable.
   EstimateStatus read(const RobotOutput& m) {
     const auto n = Eigen::Index(to_tree_.size());
-    if (m.q.size() != n || m.dq.size() != n) {  // the message only then (no heap memory)
-      check_argument(false, "BaseEstimator: RobotOutput q, dq",
-                     std::to_string(n) + " values each (the joint names given)",
-                     std::to_string(m.q.size()) + ", " + std::to_string(m.dq.size()));
-    }
+    if (m.q.size() != n || m.dq.size() != n) return EstimateStatus::sensor_fault;
     const ImuReading& imu = m.imu;
     if (!imu.available) return EstimateStatus::no_imu;
     if (!m.q.allFinite() || !m.dq.allFinite() || !imu.orientation_W_I.coeffs().allFinite() ||
@@ -242,8 +241,7 @@ class BaseEstimator {
     }
     for (int f = 0; f < 2; ++f) {
       const ForceTorqueReading& r = m.ft[std::size_t(f)];
-      if (!r.force_S.allFinite() || !r.pose_W_S.linear().allFinite())
-        return EstimateStatus::sensor_fault;
+      if (!r.force_S.allFinite()) return EstimateStatus::sensor_fault;
     }
     for (std::size_t j = 0; j < to_tree_.size(); ++j) {
       q_[to_tree_[j]] = m.q[Eigen::Index(j)];
@@ -254,12 +252,6 @@ class BaseEstimator {
     omega_W_ = R_WI * imu.angular_velocity_I;
     acc_W_ = R_WI * imu.acceleration_I - Eigen::Vector3d(0.0, 0.0, settings_.gravity);
     return EstimateStatus::ok;
-  }
-
-  /// The vertical force a foot carries [N], from its sensor's wrench turned into W.
-  static double normal_force(const RobotOutput& m, int f) {
-    const ForceTorqueReading& r = m.ft[std::size_t(f)];
-    return (r.pose_W_S.linear() * r.force_S).z();
   }
 
   /// Forward kinematics of the measured joints with the base at p and the IMU's orientation.

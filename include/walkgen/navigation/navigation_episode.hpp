@@ -51,7 +51,7 @@ struct NavigationOptions {
   /// When the loop stopped the robot because the NMPC found no plan (StopReason::qp_failures,
   /// e.g. the person stepped in the way), the walk starts again from where the robot stands,
   /// at most this often per episode; then the episode ends with NavigationStatus::fault.
-  int max_restarts = 5;
+  int max_restarts = 10;
 };
 
 /// Checks how an episode runs (run_navigation_episode() calls this).
