@@ -6,7 +6,8 @@
 // walks at the end (a safe stop for QP failures counts as survived: the robot is up).
 //
 //   push_recovery [--robot NAME] [--out DIR] [--max-dv V] [--dv-step V] [--directions LIST]
-//                 [--phases LIST] [--require-survival V] [--no-plot]
+//                 [--phases LIST] [--require-survival V] [--terrains LIST] [--distance D]
+//                 [--max-offset V] [--no-plot]
 //     --robot NAME          walkgen_humanoid (the G1 does not walk yet: issue 23)
 //     --out DIR             output folder, created if missing (default: .)
 //     --max-dv V            the largest velocity change [m/s] (default 0.6)
@@ -15,11 +16,19 @@
 //     --phases LIST         ss_start, ss_middle, ss_end (of single support), ds (the middle of
 //                           double support) (default: all four)
 //     --require-survival V  exit 1 unless every kick up to V m/s was survived (for tests)
+//     --terrains LIST       straight walks of --distance without kicks on: flat, slope_up,
+//                           slope_down, slope_left, slope_right (5°) (default: all five; the
+//                           2 cm step needs scene objects that collide with the robot: not yet)
+//     --distance D          how far each terrain walk goes [m] (default 2)
+//     --max-offset V        exit 1 unless every slope walk got its distance and ended within V m
+//                           of the line it started on (for tests)
 //     --no-plot             CSV only (the plot needs /usr/bin/python3 with matplotlib)
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option.
 //
 // Writes push_summary.csv (robot,direction,phase,delta_v,survived; one row per kick, written
-// atomically) and push_survival.png (python/plot_push_survival.py: the survival map). Prints a
+// atomically), terrain_summary.csv (robot,terrain,survived,distance,offset,yaw: one row per
+// terrain walk; distance and offset [m] of the base along and across the walk, yaw [rad] its
+// final heading) and push_survival.png (python/plot_push_survival.py: the survival map). Prints a
 // line per kick and the largest survived kick per direction and phase. Exit status 0 when every
 // kick ran and the files were written (and --require-survival held), 1 otherwise, 2 on a bad
 // command line.
@@ -159,6 +168,85 @@ Eigen::Vector3d direction_vector(const std::string& d) {
   return -Eigen::Vector3d::UnitY();  // right
 }
 
+/// The terrains of the straight walk (issue 24 item 6): the flat floor, slopes of kSlope up,
+/// down, rising to the left or to the right of the walk, and a kStepHeight step up.
+constexpr double kSlope = 5.0 * 3.14159265358979323846 / 180.0;  ///< [rad] 5°
+constexpr double kStepHeight = 0.02;                             ///< [m]
+constexpr double kStepAt = 0.3;  ///< [m] ahead of the start, where the step's edge runs across
+
+/// How a straight walk on a terrain ended.
+struct TerrainWalk {
+  bool survived = false;
+  double distance = 0.0;  ///< [m] the base's progress along the walk (x)
+  /// [m] how far the base's mean over the last gait cycle is from its mean over the first,
+  /// across the walk (y); the base's last position when it walked less than two cycles
+  double offset = 0.0;
+  double yaw = 0.0;   ///< [rad] the base's heading at the end
+  double time = 0.0;  ///< [s] walked
+  std::string how;
+};
+
+/// Walks kCommand straight until the base is `distance` ahead, the robot falls or twice the
+/// time the distance needs has passed.
+TerrainWalk walk_on(const std::string& terrain, double distance) {
+  walkgen::MujocoRobotSettings ms;
+  if (terrain == "slope_up") ms.slope.x() = kSlope;
+  if (terrain == "slope_down") ms.slope.x() = -kSlope;
+  if (terrain == "slope_left") ms.slope.y() = kSlope;
+  if (terrain == "slope_right") ms.slope.y() = -kSlope;
+  if (terrain == "step") {
+    walkgen::SceneObject box;
+    box.name = "step";
+    box.size = Eigen::Vector3d(2.0 * distance + 2.0, 2.0, kStepHeight);
+    box.position = Eigen::Vector3d(kStepAt + box.size.x() / 2.0, 0.0, 0.0);
+    box.rgb = Eigen::Vector3d(0.6, 0.6, 0.6);
+    ms.objects.push_back(box);
+  }
+  walkgen::MujocoRobot robot(ms);
+  walkgen::HumanoidIk ik(tree());
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  const int base = mj_name2id(robot.model(), mjOBJ_BODY, ms.base_body.c_str());
+  const auto base_xy = [&] {
+    return Eigen::Vector2d(robot.data()->xpos[3 * base], robot.data()->xpos[3 * base + 1]);
+  };
+  TerrainWalk w;
+  if (loop.start().status != walkgen::LoopStatus::ok ||
+      loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
+    w.how = "did not start: " + loop.last_tick().message;
+    return w;
+  }
+  const Eigen::Vector2d start = base_xy();
+  // The base sways from foot to foot: the line is that of its mean over a gait cycle (two
+  // steps), the first one walked against the last.
+  const auto& s = loop.mpc().settings();
+  const std::size_t cycle = std::size_t(2 * s.samples_per_step());
+  std::vector<double> sway;
+  const double limit = robot.output().time + 2.0 * distance / kCommand.x();
+  while (base_xy().x() - start.x() < distance && robot.output().time < limit) {
+    const walkgen::LoopTick& t = loop.tick();
+    if (t.status == walkgen::LoopStatus::fallen || t.status == walkgen::LoopStatus::diverged ||
+        t.mode == walkgen::LoopMode::fault || t.mode == walkgen::LoopMode::stopped) {
+      w.how = t.message;
+      break;
+    }
+    sway.push_back(base_xy().y());
+  }
+  const auto mean = [&](std::size_t first) {
+    double sum = 0.0;
+    for (std::size_t i = first; i < first + cycle; ++i) sum += sway[i];
+    return sum / double(cycle);
+  };
+  const Eigen::Vector2d end = base_xy();
+  w.distance = end.x() - start.x();
+  w.offset = sway.size() >= 2 * cycle ? std::abs(mean(sway.size() - cycle) - mean(0))
+                                      : std::abs(end.y() - start.y());
+  w.yaw = walkgen::yaw_of(robot.output().imu.orientation_W_I.toRotationMatrix());
+  w.time = robot.output().time;
+  w.survived = robot.output().status == walkgen::RobotStatus::ok && w.how.empty();
+  if (w.how.empty()) w.how = w.distance >= distance ? "reached" : "out of time";
+  return w;
+}
+
 bool succeeded(int status) { return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0; }
 
 }  // namespace
@@ -169,6 +257,9 @@ int main(int argc, char** argv) {
   bool no_plot = false;
   std::vector<std::string> directions = {"forward", "backward", "left", "right"};
   std::vector<std::string> phases = {"ss_start", "ss_middle", "ss_end", "ds"};
+  std::vector<std::string> terrains = {"flat", "slope_up", "slope_down", "slope_left",
+                                       "slope_right"};
+  double distance = 2.0, max_offset = 0.0;
   CLI::App app{
       "Kicks the walking robot in MuJoCo (a force on the base for 0.1 s) in four directions at "
       "four gait phases and sweeps the velocity change: push_summary.csv and a survival map",
@@ -192,6 +283,17 @@ int main(int argc, char** argv) {
   app.add_option("--require-survival", required,
                  "exit 1 unless every kick up to this velocity change was survived [m/s]")
       ->check(CLI::Range(0.0, 5.0));
+  app.add_option("--terrains", terrains,
+                 "straight walks without kicks: flat, slope_up, slope_down, slope_left, "
+                 "slope_right (5 degrees), step (2 cm up)")
+      ->check(
+          CLI::IsMember({"flat", "slope_up", "slope_down", "slope_left", "slope_right", "step"}))
+      ->delimiter(',');
+  app.add_option("--distance", distance, "how far each terrain walk goes [m]")
+      ->check(CLI::Range(0.0, 10.0) & walkgen_examples::positive);
+  app.add_option("--max-offset", max_offset,
+                 "exit 1 unless every slope walk reached --distance within this of its line [m]")
+      ->check(CLI::Range(0.0, 10.0));
   app.add_flag("--no-plot", no_plot,
                "CSV only, no push_survival.png (plotting needs /usr/bin/python3 with matplotlib)");
   WALKGEN_CLI_PARSE(app, argc, argv);
@@ -243,6 +345,42 @@ int main(int argc, char** argv) {
       std::printf("%s at %s: survives up to %.2f m/s\n", d.c_str(), ph.c_str(), best);
     }
   }
+  struct TerrainRow {
+    std::string terrain;
+    TerrainWalk walk;
+  };
+  std::vector<TerrainRow> walks;
+  bool offset_held = true;
+  for (const std::string& terrain : terrains) {
+    const TerrainWalk w = walk_on(terrain, distance);
+    walks.push_back({terrain, w});
+    std::printf(
+        "terrain %-11s: %s, %.3f m ahead, %.1f mm off the line, yaw %.3f rad, %.1f s (%s)\n",
+        terrain.c_str(), w.survived ? "up" : "FELL", w.distance, 1e3 * w.offset, w.yaw, w.time,
+        w.how.c_str());
+    std::fflush(stdout);
+    if (max_offset > 0.0 && terrain.rfind("slope", 0) == 0 &&
+        !(w.survived && w.distance >= distance && w.offset <= max_offset)) {
+      offset_held = false;
+    }
+  }
+  const std::string terrain_csv = out_dir + "/terrain_summary.csv";
+  try {
+    walkgen::write_atomically(terrain_csv, [&](const std::string& temp) {
+      std::ofstream out(temp);
+      out << "robot,terrain,survived,distance,offset,yaw\n";
+      for (const TerrainRow& r : walks) {
+        out << robot_name << ',' << r.terrain << ',' << (r.walk.survived ? 1 : 0) << ','
+            << r.walk.distance << ',' << r.walk.offset << ',' << r.walk.yaw << '\n';
+      }
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + temp);
+    });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "push_recovery: %s\n", e.what());
+    return 1;
+  }
+  std::printf("push_recovery: wrote %s (%zu walks)\n", terrain_csv.c_str(), walks.size());
   const std::string csv = out_dir + "/push_summary.csv";
   try {
     walkgen::write_atomically(csv, [&](const std::string& temp) {
@@ -267,6 +405,13 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "push_recovery: plotting failed: %s\n", cmd.c_str());
       return 1;
     }
+  }
+  if (!offset_held) {
+    std::fprintf(stderr,
+                 "push_recovery: a slope walk fell, fell short of %g m or ended more than %g m "
+                 "off its line\n",
+                 distance, max_offset);
+    return 1;
   }
   if (!required_held) {
     std::fprintf(stderr, "push_recovery: a kick of at most %g m/s was not survived\n", required);

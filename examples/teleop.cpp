@@ -353,7 +353,8 @@ int main(int argc, char** argv) {
 #endif
     const walkgen::CommandStatus accepted = loop.set_command(command);
     if (accepted != walkgen::CommandStatus::accepted) {  // cannot be: clamped to 95 % above
-      stop_message = std::string("the NMPC rejected the command: ") + walkgen::to_string(accepted);
+      stop_message = std::string("the NMPC did not take the command as given: ") +
+                     walkgen::to_string(accepted);
       break;
     }
     const walkgen::LoopTick& tick = loop.tick();

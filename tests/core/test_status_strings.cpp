@@ -57,7 +57,7 @@ struct Enumerators<MpcStatus> {
 template <>
 struct Enumerators<CommandStatus> {
   static constexpr std::array<CommandStatus, 3> all = {
-      CommandStatus::accepted, CommandStatus::non_finite, CommandStatus::out_of_range};
+      CommandStatus::accepted, CommandStatus::non_finite, CommandStatus::clamped};
 };
 template <>
 struct Enumerators<IkStatus> {
@@ -135,7 +135,7 @@ struct Enumerators<PatternWalkStatus> {
 // constexpr: usable where a constant expression is needed.
 static_assert(to_string(QpStatus::solved)[0] == 's');
 static_assert(to_string(MpcStatus::qp_failed)[0] == 'q');
-static_assert(to_string(CommandStatus::out_of_range)[0] == 'o');
+static_assert(to_string(CommandStatus::clamped)[0] == 'c');
 static_assert(to_string(IkStatus::not_converged)[0] == 'n');
 static_assert(to_string(LoopStatus::not_started)[0] == 'n');
 static_assert(to_string(LoopMode::stopping)[0] == 's');

@@ -136,7 +136,7 @@ TYPED_TEST(WalkingBlocks, ConstraintRowsAreTheDerivativesOfTheirValues) {
     EXPECT_TRUE(jet.passed()) << jet.message();
 #endif
   });
-  EXPECT_EQ(blocks, 5);
+  EXPECT_EQ(blocks, 6);
 }
 
 // The QP's rows are the blocks' rows, and its H and g the sum of the cost terms'.
@@ -228,21 +228,21 @@ TEST(WalkingLayout, BlocksTileTheRowsAndRenameByTheirShiftRule) {
   walkgen::WalkingMpc<double, 16> mpc(walkgen::hrp2_settings<double>(), /*obstacle_capacity=*/2);
   const auto& L = mpc.layout();
   const Eigen::Index N = 16, nf = mpc.planned_steps(), m = L.num_rows();
-  ASSERT_EQ(L.num_row_blocks(), 5);
+  ASSERT_EQ(L.num_row_blocks(), 6);
   Eigen::Index next = 0;
   for (int k = 0; k < L.num_row_blocks(); ++k) {
     EXPECT_EQ(L.rows(k).offset, next) << L.rows(k).name;
     next += L.rows(k).count();
   }
   EXPECT_EQ(next, m);
-  EXPECT_EQ(m, N * 4 + nf * 5 + 2 * nf + 2 * nf + 4);
+  EXPECT_EQ(m, N * 4 + nf * 5 + 2 * nf + 2 * nf + 2 * nf + 4);
   EXPECT_EQ(L.num_vars(), 2 * (N + nf) + nf);
   using Zmp = walkgen::ZmpPolygon<double, 16, 4>;
   using Capture = walkgen::CapturePoint<double, 16, 4>;
   EXPECT_STREQ(L.block_of_row(0), Zmp::kName);
   EXPECT_STREQ(L.block_of_row(m - 1), Capture::kName);
-  const LayoutBlock &zmp = L.rows(0), &hull = L.rows(1), &yaw = L.rows(2), &obstacles = L.rows(3),
-                    &capture = L.rows(4);
+  const LayoutBlock &zmp = L.rows(0), &hull = L.rows(1), &yaw = L.rows(2), &separation = L.rows(3),
+                    &obstacles = L.rows(4), &capture = L.rows(5);
   // One sample advanced, no landing: ZMP rows move back one sample, per-step rows stay.
   EXPECT_EQ(L.renamed(zmp.offset + 4 * 3 + 2, 1, 0), zmp.offset + 4 * 2 + 2);
   EXPECT_EQ(L.renamed(zmp.offset + 1, 1, 0), -1);  // sample 0 left the horizon
@@ -253,6 +253,8 @@ TEST(WalkingLayout, BlocksTileTheRowsAndRenameByTheirShiftRule) {
   EXPECT_EQ(L.renamed(hull.offset + 3, 1, 1), -1);
   EXPECT_EQ(L.renamed(yaw.offset + nf + 1, 1, 1), yaw.offset + nf);  // the rate row of step 2
   EXPECT_EQ(L.renamed(yaw.offset + nf, 1, 1), -1);
+  EXPECT_EQ(L.renamed(separation.offset + 2 + 1, 1, 1), separation.offset + 1);  // step 2, back
+  EXPECT_EQ(L.renamed(separation.offset + 1, 1, 1), -1);
   EXPECT_EQ(L.renamed(obstacles.offset + nf + 1, 1, 1), obstacles.offset + nf);  // obstacle 1
   // Bounds: jerks move by samples, footsteps by steps.
   EXPECT_EQ(L.renamed(m + L.jerk_y() + 5, 1, 0), m + L.jerk_y() + 4);

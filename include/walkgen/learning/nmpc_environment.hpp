@@ -38,7 +38,7 @@ struct NmpcGoalSettings {
   double goal_max_distance = 2.0;  ///< [m] … up to this, at any bearing (behind included)
   double success_radius = 0.2;     ///< [m] CoM closer than this to the goal: success
   /// Fraction of walking.max_command that an action of ±1 commands. Below 1 so that the
-  /// command is always accepted by WalkingMpc::set_command (which rejects |c| > max).
+  /// command is always accepted as given by WalkingMpc::set_command (which clamps |c| > max).
   double command_fraction = 0.999;
   double frontal_weight = 2e3;    ///< w_frontal (thesis: 2·10³)
   double goal_weight = 6e3;       ///< w_goal (thesis: 6·10³)

@@ -6,10 +6,14 @@
 /// the thesis's sign depends on the vertex order).
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/core/foot.hpp"
 #include "walkgen/core/math.hpp"
 
 namespace walkgen {
@@ -87,6 +91,49 @@ void polygon_halfplanes(const Eigen::MatrixBase<Derived>& vertices, Eigen::Matri
     A(e, 1) = ny / length;
     b(e) = be / length;
   }
+}
+
+/// Distance [m] between two soles, `length` × `width` rectangles centred on the foot frames
+/// `a` and `b`; 0 when they touch or overlap. For checking the foot separation
+/// (mpc/constraints/foot_separation.hpp) on plans and trajectories.
+template <typename Scalar>
+Scalar sole_distance(const FootPose<Scalar>& a, const FootPose<Scalar>& b, Scalar length,
+                     Scalar width) {
+  using V = Eigen::Matrix<Scalar, 2, 1>;
+  const auto corners = [&](const FootPose<Scalar>& p) {
+    const Scalar c = std::cos(p.q), s = std::sin(p.q), hx = length / 2, hy = width / 2;
+    std::array<V, 4> k;
+    const Scalar xs[4] = {hx, -hx, -hx, hx}, ys[4] = {hy, hy, -hy, -hy};
+    for (int i = 0; i < 4; ++i) k[i] = V(p.x + c * xs[i] - s * ys[i], p.y + s * xs[i] + c * ys[i]);
+    return k;
+  };
+  const std::array<V, 4> A = corners(a), B = corners(b);
+  // The corners run counter-clockwise, so (e_y, −e_x) is edge e's outward normal. Convex
+  // polygons are apart exactly when an edge of one has the other wholly beyond it; then their
+  // distance is the least corner-to-edge distance either way.
+  const auto separated = [](const std::array<V, 4>& P, const std::array<V, 4>& Q) {
+    for (int e = 0; e < 4; ++e) {
+      const V edge = P[(e + 1) % 4] - P[e], normal(edge.y(), -edge.x());
+      bool beyond = true;
+      for (int i = 0; i < 4 && beyond; ++i) beyond = normal.dot(Q[i] - P[e]) > Scalar(0);
+      if (beyond) return true;
+    }
+    return false;
+  };
+  if (!separated(A, B) && !separated(B, A)) return Scalar(0);
+  const auto to_segment = [](const V& p, const V& s0, const V& s1) {
+    const V d = s1 - s0;
+    const Scalar t = std::clamp((p - s0).dot(d) / d.squaredNorm(), Scalar(0), Scalar(1));
+    return (s0 + t * d - p).norm();
+  };
+  Scalar best = std::numeric_limits<Scalar>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    for (int e = 0; e < 4; ++e) {
+      best = std::min(
+          {best, to_segment(A[i], B[e], B[(e + 1) % 4]), to_segment(B[i], A[e], A[(e + 1) % 4])});
+    }
+  }
+  return best;
 }
 
 }  // namespace walkgen

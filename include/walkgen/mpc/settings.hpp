@@ -60,6 +60,10 @@ struct RobotGeometry {
   Scalar foot_width = Scalar(0.1380);   ///< [m] sole size across the foot (y), `foot_width`
   Scalar foot_length = Scalar(0.2172);  ///< [m] sole size along the foot (x), `foot_length`
   Scalar foot_distance = Scalar(0.2);  ///< [m] lateral distance of the feet frames, `foot_distance`
+  /// [m] the least distance between the two soles (foot_length × foot_width) at every planned
+  /// footstep (walkgen's own, mpc/constraints/foot_separation.hpp): the feasibility polygons
+  /// bound the foot centres only, and turned feet came within 1.4 cm. 0 lets the soles touch.
+  Scalar min_foot_separation = Scalar(0.02);
   /// [m] optional ZMP support polygon of the left foot, in its foot frame (E × 2, convex); the
   /// right foot's is its mirror image. Empty: the foot_length × foot_width rectangle shrunk by
   /// security_margin (fig. 6.4). Its edge count must match the generator's FootEdges.
@@ -99,15 +103,22 @@ struct GeneratorSettings {
   /// divided by t_step, tracks the command (plus the lateral foot_distance), per (m/s)² and
   /// horizon sample like alpha. It carries the mean walking velocity that the instantaneous
   /// CoM velocity cost (alpha) cannot, as that cost also charges the sway (docs/tuning.md).
-  Scalar step_velocity_weight = Scalar(10);
+  Scalar step_velocity_weight = Scalar(100);
+  /// Weight of the heading: each planned footstep's yaw tracks the reference heading (the
+  /// commanded yaw rate integrated since the last reset, at the middle of that foot's support),
+  /// per rad² like the yaw-rate term of alpha (S / t_step² per step). The yaw-rate term alone
+  /// only sees differences between consecutive feet: a bias of both feet went uncorrected and
+  /// the feet's yaws bought ZMP margin from the feasibility polygons, so straight commands
+  /// veered (Heicub 7 cm over 2.35 m, issue 24).
+  Scalar heading_weight = Scalar(10);
   /// [s] the thesis's qpOASES wall-clock limit (`cpu_time`). Accepted for compatibility and
   /// ignored: a wall-clock limit made the thesis's runs fail under load (docs/design.md §4);
   /// walkgen limits work by iterations (`nwsr`) instead.
   Scalar cpu_time = Scalar(0.01);
   /// Maximal active-set changes per QP solve (`nwsr`); reaching it fails the tick safely.
   int nwsr = 100;
-  /// Largest accepted velocity command (|v_x| [m/s], |v_y| [m/s], |ω_z| [rad/s]); larger or
-  /// non-finite commands are rejected with a status and the previous command is kept. The
+  /// Largest velocity command walked (|v_x| [m/s], |v_y| [m/s], |ω_z| [rad/s]): a larger
+  /// component is clamped to it (CommandStatus::clamped), a non-finite command rejected. The
   /// presets accept what their feasibility polygons and yaw limit can reach: HRP-2 steps at most
   /// 0.28 m forward per 0.8 s step (0.35 m/s); sideways, the leading foot at most 0.4 m from the
   /// other, 0.2 m beyond foot_distance per 1.6 s gait cycle (0.125 m/s); it turns at most
@@ -241,8 +252,9 @@ WalkingSettings<Scalar> heicub_settings() {
   s.beta = Scalar(1e2);
   s.gamma = Scalar(1e-2);
   // beta = 1e2 centres the ZMP 10⁸ times harder than HRP-2's: the step velocity must weigh
-  // comparably for the gait to follow the command (forward 0.02 m/s reaches 0.012 at 10).
-  s.step_velocity_weight = Scalar(100);
+  // comparably for the gait to follow the command (docs/tuning.md: forward 0.92 of the
+  // command at 100, 0.99 at 1000; sideways at 100 nothing below 0.002 m/s).
+  s.step_velocity_weight = Scalar(1000);
   // Reach (see max_command): 0.11 m per 3.2 s step forward, 0.03 m per 6.4 s cycle sideways,
   // 0.25 rad per step.
   s.max_command << Scalar(0.034), Scalar(0.0045), Scalar(0.075);
@@ -333,6 +345,7 @@ void validate(const RobotGeometry<Scalar>& s) {
   C::between("WalkingSettings.com_z", s.com_z, 1e-3, lim::kMaxPosition);
   C::between("WalkingSettings.gravity", s.gravity, 1e-2, 1e3);
   C::up_to("WalkingSettings.max_relative_yaw", s.max_relative_yaw, 1e3, false);
+  C::up_to("WalkingSettings.min_foot_separation", s.min_foot_separation, lim::kMaxPosition, true);
   C::up_to("WalkingSettings.max_relative_yaw_rate", s.max_relative_yaw_rate, 1e3, false);
   if (s.zmp_polygon.rows() > 0) C::polygon("WalkingSettings.zmp_polygon", s.zmp_polygon);
 }
@@ -371,6 +384,7 @@ void validate(const GeneratorSettings<Scalar>& s) {
   C::up_to("WalkingSettings.alpha", s.alpha, lim::kMaxWeight, true);
   C::up_to("WalkingSettings.beta", s.beta, lim::kMaxWeight, true);
   C::up_to("WalkingSettings.step_velocity_weight", s.step_velocity_weight, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.heading_weight", s.heading_weight, lim::kMaxWeight, true);
   C::up_to("WalkingSettings.gamma", s.gamma, lim::kMaxWeight, false);
   check_argument(s.gamma >= Scalar(lim::kMinGamma), "WalkingSettings.gamma",
                  "a jerk weight >= 1e-12 (it keeps the QP strictly convex)", s.gamma);

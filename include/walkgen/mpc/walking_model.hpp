@@ -21,11 +21,13 @@
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/model/lipm.hpp"
 #include "walkgen/mpc/constraints/capture_point.hpp"
+#include "walkgen/mpc/constraints/foot_separation.hpp"
 #include "walkgen/mpc/constraints/footstep_feasibility.hpp"
 #include "walkgen/mpc/constraints/obstacles.hpp"
 #include "walkgen/mpc/constraints/relative_yaw.hpp"
 #include "walkgen/mpc/constraints/zmp_polygon.hpp"
 #include "walkgen/mpc/costs/footstep_regularization.hpp"
+#include "walkgen/mpc/costs/heading.hpp"
 #include "walkgen/mpc/costs/jerk.hpp"
 #include "walkgen/mpc/costs/step_velocity.hpp"
 #include "walkgen/mpc/costs/velocity_tracking.hpp"
@@ -84,10 +86,12 @@ class WalkingModel {
   /// The constraint blocks, in row order.
   using Constraints =
       std::tuple<ZmpPolygon<Scalar, N, FootEdges>, FootstepFeasibility<Scalar, HullEdges>,
-                 RelativeYaw<Scalar>, Obstacles<Scalar>, CapturePoint<Scalar, N, FootEdges>>;
+                 RelativeYaw<Scalar>, FootSeparation<Scalar>, Obstacles<Scalar>,
+                 CapturePoint<Scalar, N, FootEdges>>;
   /// The cost terms, in summation order.
   using Costs = std::tuple<FootstepRegularization<Scalar>, StepVelocity<Scalar>, YawRate<Scalar>,
-                           VelocityTracking<Scalar, N>, ZmpCentring<Scalar, N>, Jerk<Scalar>>;
+                           Heading<Scalar>, VelocityTracking<Scalar, N>, ZmpCentring<Scalar, N>,
+                           Jerk<Scalar>>;
   static constexpr int kNumConstraints = int(std::tuple_size<Constraints>::value);
 
   /// Validates the settings and builds the formulation.
@@ -119,8 +123,9 @@ class WalkingModel {
 
   /// The per-tick data that do not depend on the iterate: the schedule, and the bounds that
   /// freeze the landing footstep in the last interval before it touches down.
+  /// `reference_heading` [rad]: the commanded heading now (WalkingMpc::reference_heading()).
   void prepare(const WalkingState<Scalar>& state, const Eigen::Matrix<Scalar, 3, 1>& command,
-               const VectorX& plan, Workspace& w) const;
+               Scalar reference_heading, const VectorX& plan, Workspace& w) const;
 
   /// H and g of the cost (eq. 2.51–2.60, gradient per docs/design.md §5) at t.iterate: the
   /// constant Hessian plus every cost term's tick part.
@@ -195,7 +200,8 @@ class WalkingModel {
     const FootPolygons<Scalar, HullEdges> hulls(s.left_foot_convex_hull, s.right_foot_convex_hull);
     return Constraints(ZmpPolygon<Scalar, N, FootEdges>(soles),
                        FootstepFeasibility<Scalar, HullEdges>(hulls), RelativeYaw<Scalar>(s),
-                       Obstacles<Scalar>(), CapturePoint<Scalar, N, FootEdges>(soles, preview));
+                       FootSeparation<Scalar>(s), Obstacles<Scalar>(),
+                       CapturePoint<Scalar, N, FootEdges>(soles, preview));
   }
 
   Settings s_;
@@ -219,7 +225,8 @@ WalkingModel<Scalar, N, FootEdges, HullEdges>::WalkingModel(const Settings& sett
       step_(s_.t),
       constraints_(make_constraints(s_, preview_)),
       costs_(FootstepRegularization<Scalar>(s_), StepVelocity<Scalar>(s_), YawRate<Scalar>(s_),
-             VelocityTracking<Scalar, N>(s_), ZmpCentring<Scalar, N>(s_), Jerk<Scalar>(s_)) {
+             Heading<Scalar>(s_), VelocityTracking<Scalar, N>(s_), ZmpCentring<Scalar, N>(s_),
+             Jerk<Scalar>(s_)) {
   std::apply(
       [&](const auto&... block) {
         (layout_.add_rows(block.kName, block.shape(layout_.dims())), ...);
@@ -236,8 +243,8 @@ WalkingModel<Scalar, N, FootEdges, HullEdges>::WalkingModel(const Settings& sett
 template <typename Scalar, int N, int FootEdges, int HullEdges>
 void WalkingModel<Scalar, N, FootEdges, HullEdges>::prepare(
     const WalkingState<Scalar>& state, const Eigen::Matrix<Scalar, 3, 1>& command,
-    const VectorX& plan, Workspace& w) const {
-  w.schedule.update(s_, state, command);
+    Scalar reference_heading, const VectorX& plan, Workspace& w) const {
+  w.schedule.update(s_, state, command, reference_heading);
   const bool frozen = state.phase == layout_.dims().S - 1;
   for (Index base : {layout_.step_x(), layout_.step_y(), layout_.step_q()}) {
     w.qp.problem().l[base] = frozen ? plan[base] : -Workspace::kInf;

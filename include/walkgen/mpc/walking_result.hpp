@@ -25,9 +25,11 @@ enum class MpcStatus : std::uint8_t {
 
 /// What happened to a velocity command.
 enum class CommandStatus : std::uint8_t {
-  accepted,      ///< in use from the next solve()
-  non_finite,    ///< NaN or inf: rejected, the previous command stays
-  out_of_range,  ///< beyond WalkingSettings::max_command: rejected, the previous command stays
+  accepted,    ///< in use from the next solve()
+  non_finite,  ///< NaN or inf: rejected, the previous command stays
+  /// beyond WalkingSettings::max_command: each component beyond its limit clamped to it
+  /// (sign kept), in use from the next solve() (WalkingMpc::command() is what walks)
+  clamped,
 };
 
 /// The enumerator's name ("solved", ...), e.g. for logs; "unknown" out of range.
@@ -50,8 +52,8 @@ constexpr const char* to_string(CommandStatus s) noexcept {
       return "accepted";
     case CommandStatus::non_finite:
       return "non_finite";
-    case CommandStatus::out_of_range:
-      return "out_of_range";
+    case CommandStatus::clamped:
+      return "clamped";
   }
   return "unknown";
 }

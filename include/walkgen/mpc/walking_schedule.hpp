@@ -125,20 +125,39 @@ void check_walking_state(const char* where, const WalkingSettings<Scalar>& s,
   }
 }
 
+/// The reference heading [rad] when planned step i ≥ 0 lands (i = 0: when the support foot
+/// landed): `heading` is the reference now (WalkingMpc::reference_heading(), the commanded yaw
+/// rate integrated), the command's yaw rate carries it along the step times.
+template <typename Scalar>
+Scalar heading_at_step(const WalkingSettings<Scalar>& s, const WalkingState<Scalar>& st,
+                       Scalar yaw_rate, Scalar heading, Eigen::Index i) {
+  return heading + yaw_rate * (Scalar(i) * s.t_step - Scalar(st.phase) * s.t);
+}
+
+/// The yaw planned step i's foot should have: the reference heading at the middle of its
+/// support, half a step after it lands. Consecutive feet are then ω·t_step apart (eq. 2.44) and
+/// the two feet's mean yaw is the reference heading when a step lands.
+template <typename Scalar>
+Scalar yaw_of_step(const WalkingSettings<Scalar>& s, const WalkingState<Scalar>& st,
+                   Scalar yaw_rate, Scalar heading, Eigen::Index i) {
+  return heading_at_step(s, st, yaw_rate, heading, i) + yaw_rate * s.t_step / Scalar(2);
+}
+
 /// Step velocity target of planned step i relative to step i − 1 (walkgen's own, see
 /// costs/step_velocity.hpp): F_i − F_{i−1} = R(h_i) (t_step v + lateral), h_i the reference
-/// heading between the two feet of step i. The feet stand foot_distance apart measured in the
-/// frame of the foot a step is planned from, as the feasibility polygons measure it:
+/// heading when step i lands (heading_at_step()). The feet stand foot_distance apart measured
+/// in the frame of the foot a step is planned from, as the feasibility polygons measure it:
 /// foot_distance / cos(Δ/2) between centres when consecutive feet turn by Δ = ω t_step.
 /// @param command (v_x, v_y [m/s], ω_z [rad/s]) in the robot's frame.
+/// @param heading the reference heading now [rad] (WalkingMpc::reference_heading()).
 template <typename Scalar>
 void step_displacement(const WalkingSettings<Scalar>& s, const WalkingState<Scalar>& st,
-                       const Eigen::Matrix<Scalar, 3, 1>& command, Eigen::Index i, Scalar& dx_world,
-                       Scalar& dy_world) {
+                       const Eigen::Matrix<Scalar, 3, 1>& command, Scalar heading, Eigen::Index i,
+                       Scalar& dx_world, Scalar& dy_world) {
   using std::cos;
   using std::sin;
   const Scalar turn = command[2] * s.t_step;
-  const Scalar h = st.support.q + turn * (Scalar(i) - Scalar(0.5));
+  const Scalar h = heading_at_step(s, st, command[2], heading, i);
   const Scalar side = st.foot_of_step(i) == Foot::left ? Scalar(1) : Scalar(-1);
   // Sideways, the leading foot steps 2 t_step v_y out and the trailing one closes up.
   const Scalar lateral =
@@ -163,6 +182,8 @@ struct WalkingSchedule {
   VectorX step_x, step_y;
   /// Yaw targets of θ_i − θ_{i−1} [rad]: ω·t_step (eq. 2.44), the support yaw added to the first.
   VectorX yaw;
+  /// Absolute yaw targets of θ_i [rad] (yaw_of_step(): the reference heading, costs/heading.hpp).
+  VectorX heading;
 
   explicit WalkingSchedule(const WalkingDims& d)
       : step_of(Eigen::Matrix<int, Eigen::Dynamic, 1>::Zero(d.N)),
@@ -170,25 +191,27 @@ struct WalkingSchedule {
         ref_y(VectorX::Zero(d.N)),
         step_x(VectorX::Zero(d.nf)),
         step_y(VectorX::Zero(d.nf)),
-        yaw(VectorX::Zero(d.nf)) {}
+        yaw(VectorX::Zero(d.nf)),
+        heading(VectorX::Zero(d.nf)) {}
 
-  /// Fills the schedule of a tick planned from `st` under `command`. Allocation-free.
+  /// Fills the schedule of a tick planned from `st` under `command`, the reference heading now
+  /// being `reference_heading` [rad]. Allocation-free.
   void update(const WalkingSettings<Scalar>& s, const WalkingState<Scalar>& st,
-              const Eigen::Matrix<Scalar, 3, 1>& command) {
+              const Eigen::Matrix<Scalar, 3, 1>& command, Scalar reference_heading) {
     using std::cos;
     using std::sin;
     const Eigen::Index N = step_of.size(), nf = yaw.size(), S = s.samples_per_step();
     for (Eigen::Index j = 0; j < N; ++j) step_of[j] = int((st.phase + j) / S);
-    const Scalar heading = st.heading();
     for (Eigen::Index j = 0; j < N; ++j) {
-      const Scalar q = heading + command[2] * s.t * Scalar(j + 1);
+      const Scalar q = reference_heading + command[2] * s.t * Scalar(j + 1);
       ref_x[j] = command[0] * cos(q) - command[1] * sin(q);
       ref_y[j] = command[0] * sin(q) + command[1] * cos(q);
     }
     yaw.setConstant(command[2] * s.t_step);
     yaw[0] += st.support.q;
     for (Eigen::Index i = 1; i <= nf; ++i) {
-      step_displacement(s, st, command, i, step_x[i - 1], step_y[i - 1]);
+      step_displacement(s, st, command, reference_heading, i, step_x[i - 1], step_y[i - 1]);
+      heading[i - 1] = yaw_of_step(s, st, command[2], reference_heading, i);
     }
     step_x[0] += st.support.x;
     step_y[0] += st.support.y;

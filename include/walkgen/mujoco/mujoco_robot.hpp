@@ -150,6 +150,11 @@ struct MujocoRobotSettings {
   double fall_height_ratio = 0.8;
   /// Static objects added to the world of the model (the model file itself is not changed).
   std::vector<SceneObject> objects;
+  /// [rad] the floor's slope, as gravity tilted against the world: (along x, across y). A
+  /// positive x slope is uphill walking forward (gravity pulls toward −x), a positive y slope
+  /// rises to the left (gravity pulls toward −y). The floor, the feet and the frames stay level
+  /// in the world, so the whole scene is the inclined plane seen from its own frame.
+  Eigen::Vector2d slope = Eigen::Vector2d::Zero();
   /// Largest image of MujocoRobot::render_view() [px] (sizes the offscreen buffer).
   int view_width = 640;
   int view_height = 480;
@@ -172,6 +177,9 @@ inline void validate(const MujocoRobotSettings& s) {
   check_argument((s.kp.size() == 0 && s.kd.size() == 0) || (s.kp.size() == n && s.kd.size() == n),
                  "MujocoRobotSettings.kp, kd", "none or one gain per joint name each",
                  std::to_string(s.kp.size()) + ", " + std::to_string(s.kd.size()));
+  check_argument(s.slope.allFinite() && (s.slope.cwiseAbs().array() <= 0.5).all(),
+                 "MujocoRobotSettings.slope", "finite angles within ±0.5 rad",
+                 std::to_string(s.slope.x()) + ", " + std::to_string(s.slope.y()));
   check_argument(s.sole_frames[0].empty() == s.sole_frames[1].empty(),
                  "MujocoRobotSettings.sole_frames", "two names (left, right) or none",
                  "'" + s.sole_frames[0] + "', '" + s.sole_frames[1] + "'");
@@ -456,6 +464,14 @@ class MujocoRobot final : public Robot {
     data_.reset(mj_makeData(model_.get()));
     check_argument(data_ != nullptr, "MujocoRobot", "memory for the simulation data of",
                    "'" + path + "'");
+    if (!settings_.slope.isZero()) {  // gravity of the model's size, tilted by the slope
+      const Eigen::Vector3d down =
+          (Eigen::AngleAxisd(-settings_.slope.y(), Eigen::Vector3d::UnitX()) *
+           Eigen::AngleAxisd(settings_.slope.x(), Eigen::Vector3d::UnitY()) *
+           Eigen::Vector3d(0.0, 0.0, -1.0));
+      const double g = Eigen::Map<const Eigen::Vector3d>(model_->opt.gravity).norm();
+      Eigen::Map<Eigen::Vector3d>(model_->opt.gravity) = g * down;
+    }
   }
 
   /// The MJCF of `path` with settings_.objects inserted at the end of its worldbody, loaded

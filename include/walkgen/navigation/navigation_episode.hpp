@@ -110,8 +110,9 @@ struct NavigationResult {
   std::vector<Eigen::Vector3d> commands;  ///< one per tick
   std::vector<double> zmp_distance;       ///< NMPC vs measured ZMP per valid sample [m]
   long qp_failures = 0;                   ///< ticks whose NMPC did not solve
-  int restarts = 0;            ///< walks started again after a stop for QP failures (max_restarts)
-  long rejected_commands = 0;  ///< policy commands the loop rejected (non-finite): the last stays
+  int restarts = 0;  ///< walks started again after a stop for QP failures (max_restarts)
+  /// policy commands the loop did not walk as given (non-finite: rejected, the last stays)
+  long rejected_commands = 0;
 };
 
 /// Time to walk and turn to the scene's target at Heicub's speeds, with a margin.

@@ -82,13 +82,12 @@ struct ScenarioRun {
   std::vector<Landing> landings;                  ///< initial feet, then every landing
 };
 
-/// Runs a scenario with settings s (its obstacles replaced by the scenario's) on a generator of
-/// horizon N, interpolated at the command period. A rejected command or a failed solve does
-/// not stop the run: it is in `commands` and `results`.
+/// Runs `ticks` NMPC ticks with settings s on a generator of horizon N, the command at tick k
+/// being command(k) (v_x, v_y, ω_z), interpolated at the command period. A rejected or clamped
+/// command or a failed solve does not stop the run: it is in `commands` and `results`.
 /// @throws walkgen::invalid_argument when the settings are invalid (WalkingMpc's constructor).
-template <int N = Eigen::Dynamic>
-ScenarioRun run_scenario(const Scenario& sc, WalkingSettings<double> s) {
-  s.obstacles = sc.obstacles;
+template <int N = Eigen::Dynamic, typename Command>
+ScenarioRun run_commands(const WalkingSettings<double>& s, const Command& command, int ticks) {
   WalkingMpc<double, N> mpc(s);
   WalkingInterpolator<double> interp(interpolation_settings(s));
   ScenarioRun run;
@@ -96,8 +95,8 @@ ScenarioRun run_scenario(const Scenario& sc, WalkingSettings<double> s) {
   run.landings.push_back({0.0, st0.support_foot, st0.support});
   run.landings.push_back({0.0, other(st0.support_foot), st0.swing_origin});
   std::vector<TrajectorySample<double>> buffer(std::size_t(interp.samples_per_tick()));
-  for (int k = 0; k < sc.ticks; ++k) {
-    run.commands.push_back(mpc.set_command(sc.command(k)));
+  for (int k = 0; k < ticks; ++k) {
+    run.commands.push_back(mpc.set_command(command(k)));
     run.states.push_back(mpc.state());
     run.results.push_back(mpc.solve());
     run.plans.push_back(mpc.plan());
@@ -110,6 +109,16 @@ ScenarioRun run_scenario(const Scenario& sc, WalkingSettings<double> s) {
     }
   }
   return run;
+}
+
+/// Runs a scenario with settings s (its obstacles replaced by the scenario's) on a generator of
+/// horizon N (run_commands()).
+/// @throws walkgen::invalid_argument when the settings are invalid (WalkingMpc's constructor).
+template <int N = Eigen::Dynamic>
+ScenarioRun run_scenario(const Scenario& sc, WalkingSettings<double> s) {
+  s.obstacles = sc.obstacles;
+  return run_commands<N>(
+      s, [&sc](int k) { return sc.command(k); }, sc.ticks);
 }
 
 /// Steady-state walking velocity of a run: the CoM velocity in the robot frame (x, y) and the
@@ -188,9 +197,11 @@ inline std::vector<CircleObstacle<double>> heicub_obstacle(const std::string& na
 
 /// How a heicub_walk() ended.
 enum class PatternWalkStatus : std::uint8_t {
-  ok,                ///< every tick's command was accepted and its NMPC solved
-  command_rejected,  ///< a tick's command was rejected (PatternWalk::command says why)
-  mpc_failed,        ///< a tick's NMPC did not solve (PatternWalk::mpc says how)
+  ok,  ///< every tick's command was accepted and its NMPC solved
+  /// a tick's command was not walked as given: rejected (NaN) or clamped to max_command
+  /// (PatternWalk::command says which)
+  command_rejected,
+  mpc_failed,  ///< a tick's NMPC did not solve (PatternWalk::mpc says how)
 };
 
 /// The enumerator's name ("ok", "command_rejected", "mpc_failed"); "unknown" out of range.

@@ -121,7 +121,8 @@ struct TaskResult {
   /// Smallest distance of a sole centre in contact (true pose) to an obstacle's centre [m].
   double min_obstacle_distance = 1e9;
   int qp_failures = 0, ik_failures = 0;
-  int rejected_commands = 0;  ///< steering commands the loop rejected (non-finite, too large)
+  /// steering commands the loop did not walk as given (non-finite: rejected; too large: clamped)
+  int rejected_commands = 0;
   double min_base_height = 1e9;
   std::vector<TaskRow> rows;  ///< every command period
 

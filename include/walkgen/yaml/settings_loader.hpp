@@ -13,7 +13,8 @@
 ///   foot_x, foot_y, foot_q, gravity, obstacle (bool) with x_pos, y_pos, radius and an optional
 ///   margin, n, t, t_feedback, alpha, beta, gamma, cpu_time, nwsr;
 ///   walkgen's own: max_relative_yaw, max_relative_yaw_rate, sqp_iterations, sqp_corrections,
-///   sqp_tolerance, step_velocity_weight, max_command [3], footstep_regularization,
+///   sqp_tolerance, step_velocity_weight, heading_weight, min_foot_separation, max_command [3],
+///   footstep_regularization,
 ///   max_state_distance, max_com_speed, max_com_acceleration, and
 ///   obstacles: [{x, y, radius, margin}, ...].
 /// Numbers must be finite (`.inf` and `.nan` are rejected); the integer keys (n, n_still, nwsr,
@@ -285,6 +286,8 @@ const std::vector<YamlField<Scalar>>& yaml_fields() {
       {"sqp_corrections", [](V v, T t) { v.read(t.s.generator().sqp_corrections); }},
       {"sqp_tolerance", [](V v, T t) { v.read(t.s.generator().sqp_tolerance); }},
       {"step_velocity_weight", [](V v, T t) { v.read(t.s.generator().step_velocity_weight); }},
+      {"heading_weight", [](V v, T t) { v.read(t.s.generator().heading_weight); }},
+      {"min_foot_separation", [](V v, T t) { v.read(t.s.geometry().min_foot_separation); }},
       {"max_command", [](V v, T t) { v.read(t.s.generator().max_command); }},
       {"footstep_regularization",
        [](V v, T t) { v.read(t.s.generator().footstep_regularization); }},
