@@ -247,6 +247,25 @@ TerrainWalk walk_on(const std::string& terrain, double distance) {
   return w;
 }
 
+/// Writes `header` and the rows `body` streams to `path` atomically; false (and a message on
+/// stderr) when it cannot.
+template <typename Body>
+bool write_csv(const std::string& path, const char* header, const Body& body) {
+  try {
+    walkgen::write_atomically(path, [&](const std::string& temp) {
+      std::ofstream out(temp);
+      out << header << '\n';
+      body(out);
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + temp);
+    });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "push_recovery: %s\n", e.what());
+    return false;
+  }
+  return true;
+}
+
 bool succeeded(int status) { return status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0; }
 
 }  // namespace
@@ -365,38 +384,23 @@ int main(int argc, char** argv) {
     }
   }
   const std::string terrain_csv = out_dir + "/terrain_summary.csv";
-  try {
-    walkgen::write_atomically(terrain_csv, [&](const std::string& temp) {
-      std::ofstream out(temp);
-      out << "robot,terrain,survived,distance,offset,yaw\n";
-      for (const TerrainRow& r : walks) {
-        out << robot_name << ',' << r.terrain << ',' << (r.walk.survived ? 1 : 0) << ','
-            << r.walk.distance << ',' << r.walk.offset << ',' << r.walk.yaw << '\n';
-      }
-      out.close();
-      if (!out) throw std::runtime_error("cannot write " + temp);
-    });
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "push_recovery: %s\n", e.what());
-    return 1;
-  }
-  std::printf("push_recovery: wrote %s (%zu walks)\n", terrain_csv.c_str(), walks.size());
   const std::string csv = out_dir + "/push_summary.csv";
-  try {
-    walkgen::write_atomically(csv, [&](const std::string& temp) {
-      std::ofstream out(temp);
-      out << "robot,direction,phase,delta_v,survived\n";
-      for (const Row& r : rows) {
-        out << robot_name << ',' << r.direction << ',' << r.phase << ',' << r.dv << ','
-            << (r.survived ? 1 : 0) << '\n';
-      }
-      out.close();
-      if (!out) throw std::runtime_error("cannot write " + temp);
-    });
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "push_recovery: %s\n", e.what());
-    return 1;
-  }
+  const bool written =
+      write_csv(terrain_csv, "robot,terrain,survived,distance,offset,yaw",
+                [&](std::ostream& out) {
+                  for (const TerrainRow& r : walks) {
+                    out << robot_name << ',' << r.terrain << ',' << (r.walk.survived ? 1 : 0) << ','
+                        << r.walk.distance << ',' << r.walk.offset << ',' << r.walk.yaw << '\n';
+                  }
+                }) &&
+      write_csv(csv, "robot,direction,phase,delta_v,survived", [&](std::ostream& out) {
+        for (const Row& r : rows) {
+          out << robot_name << ',' << r.direction << ',' << r.phase << ',' << r.dv << ','
+              << (r.survived ? 1 : 0) << '\n';
+        }
+      });
+  if (!written) return 1;
+  std::printf("push_recovery: wrote %s (%zu walks)\n", terrain_csv.c_str(), walks.size());
   std::printf("push_recovery: wrote %s (%zu kicks)\n", csv.c_str(), rows.size());
   std::fflush(stdout);
   if (!no_plot) {
