@@ -7,7 +7,8 @@
 //
 //   push_recovery [--robot NAME] [--out DIR] [--max-dv V] [--dv-step V] [--directions LIST]
 //                 [--phases LIST] [--require-survival V] [--terrains LIST] [--distance D]
-//                 [--max-offset V] [--no-plot]
+//                 [--max-offset V] [--feedback SOURCE] [--position-gain G]
+//                 [--velocity-gain G] [--no-plot]
 //     --robot NAME          walkgen_humanoid (the G1 does not walk yet: issue 23)
 //     --out DIR             output folder, created if missing (default: .)
 //     --max-dv V            the largest velocity change [m/s] (default 0.6)
@@ -22,6 +23,12 @@
 //     --distance D          how far each terrain walk goes [m] (default 2)
 //     --max-offset V        exit 1 unless every slope walk got its distance and ended within V m
 //                           of the line it started on (for tests)
+//     --feedback SOURCE     the CoM fed back to the NMPC: kinematics (default; the measured
+//                           joints from the planned support sole) or estimator (BaseEstimator's
+//                           position and velocity)
+//     --position-gain G     estimator feedback: fraction of the CoM position error fed back
+//                           (default 0.3, WalkingLoopSettings::estimated_position_gain)
+//     --velocity-gain G     estimator feedback: fraction of the CoM velocity error (default 0.3)
 //     --no-plot             CSV only (the plot needs /usr/bin/python3 with matplotlib)
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option.
 //
@@ -59,36 +66,6 @@ const walkgen::KinematicTree<double>& tree() {
   return t;
 }
 
-/// A MujocoRobot whose base gets `force` [N] (world frame) from `at` for kPushDuration.
-class PushedRobot final : public walkgen::Robot {
- public:
-  PushedRobot(walkgen::MujocoRobot& inner, const Eigen::Vector3d& force, double at)
-      : inner_(inner), force_(force), at_(at) {
-    base_ = mj_name2id(inner_.model(), mjOBJ_BODY, inner_.settings().base_body.c_str());
-  }
-  const walkgen::RobotInfo& info() const override { return inner_.info(); }
-  walkgen::JointCommandStatus set_joint_targets(
-      const Eigen::Ref<const Eigen::VectorXd>& q) override {
-    return inner_.set_joint_targets(q);
-  }
-  walkgen::RobotStatus step(double duration) override {
-    const double t = inner_.output().time;
-    const bool pushing = t >= at_ - 1e-9 && t < at_ + kPushDuration - 1e-9;
-    Eigen::Map<Eigen::Vector3d>(inner_.data()->xfrc_applied + 6 * base_) =
-        pushing ? force_ : Eigen::Vector3d::Zero();
-    return inner_.step(duration);
-  }
-  const walkgen::RobotOutput& output() const override { return inner_.output(); }
-  const walkgen::StereoImages& render_cameras() override { return inner_.render_cameras(); }
-  void reset() override { inner_.reset(); }
-
- private:
-  walkgen::MujocoRobot& inner_;
-  Eigen::Vector3d force_;
-  double at_;
-  int base_ = -1;
-};
-
 /// When each phase's push starts [s], from a walk without pushes: in the second step's single
 /// support (the first is the walk's start) and the double support after it.
 struct PhaseTimes {
@@ -96,10 +73,10 @@ struct PhaseTimes {
   std::string error;  // empty when found
 };
 
-PhaseTimes phase_times() {
+PhaseTimes phase_times(const walkgen::WalkingLoopSettings& settings) {
   walkgen::MujocoRobot robot;
   walkgen::HumanoidIk ik(tree());
-  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik, settings);
   PhaseTimes p;
   if (loop.start().status != walkgen::LoopStatus::ok ||
       loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
@@ -137,11 +114,12 @@ PhaseTimes phase_times() {
 }
 
 /// One kick: true when the robot did not fall.
-bool survives(const Eigen::Vector3d& force, double at, std::string& how) {
-  walkgen::MujocoRobot mujoco;
-  PushedRobot robot(mujoco, force, at);
+bool survives(const walkgen::WalkingLoopSettings& settings, const Eigen::Vector3d& force, double at,
+              std::string& how) {
+  walkgen::MujocoRobot robot;
+  robot.push(force, at, kPushDuration);
   walkgen::HumanoidIk ik(tree());
-  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik, settings);
   if (loop.start().status != walkgen::LoopStatus::ok ||
       loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
     how = "did not start: " + loop.last_tick().message;
@@ -188,7 +166,8 @@ struct TerrainWalk {
 
 /// Walks kCommand straight until the base is `distance` ahead, the robot falls or twice the
 /// time the distance needs has passed.
-TerrainWalk walk_on(const std::string& terrain, double distance) {
+TerrainWalk walk_on(const walkgen::WalkingLoopSettings& settings, const std::string& terrain,
+                    double distance) {
   walkgen::MujocoRobotSettings ms;
   if (terrain == "slope_up") ms.slope.x() = kSlope;
   if (terrain == "slope_down") ms.slope.x() = -kSlope;
@@ -204,7 +183,7 @@ TerrainWalk walk_on(const std::string& terrain, double distance) {
   }
   walkgen::MujocoRobot robot(ms);
   walkgen::HumanoidIk ik(tree());
-  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik);
+  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik, settings);
   const int base = mj_name2id(robot.model(), mjOBJ_BODY, ms.base_body.c_str());
   const auto base_xy = [&] {
     return Eigen::Vector2d(robot.data()->xpos[3 * base], robot.data()->xpos[3 * base + 1]);
@@ -279,6 +258,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> terrains = {"flat", "slope_up", "slope_down", "slope_left",
                                        "slope_right"};
   double distance = 2.0, max_offset = 0.0;
+  std::string feedback = "kinematics";
+  walkgen::WalkingLoopSettings settings =
+      walkgen::loop_settings(walkgen::walkgen_humanoid_description());
   CLI::App app{
       "Kicks the walking robot in MuJoCo (a force on the base for 0.1 s) in four directions at "
       "four gait phases and sweeps the velocity change: push_summary.csv and a survival map",
@@ -313,6 +295,16 @@ int main(int argc, char** argv) {
   app.add_option("--max-offset", max_offset,
                  "exit 1 unless every slope walk reached --distance within this of its line [m]")
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--feedback", feedback,
+                 "the CoM fed back to the NMPC: kinematics (the measured joints from the planned "
+                 "support sole) or estimator (position and velocity of the state estimator)")
+      ->check(CLI::IsMember({"kinematics", "estimator"}));
+  app.add_option("--position-gain", settings.estimated_position_gain,
+                 "estimator feedback: fraction of the CoM position error fed back")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--velocity-gain", settings.estimated_velocity_gain,
+                 "estimator feedback: fraction of the CoM velocity error fed back")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--no-plot", no_plot,
                "CSV only, no push_survival.png (plotting needs /usr/bin/python3 with matplotlib)");
   WALKGEN_CLI_PARSE(app, argc, argv);
@@ -324,7 +316,9 @@ int main(int argc, char** argv) {
                  ec.message().c_str());
     return 1;
   }
-  const PhaseTimes times = phase_times();
+  settings.feedback = feedback == "estimator" ? walkgen::FeedbackSource::estimator
+                                              : walkgen::FeedbackSource::kinematics;
+  const PhaseTimes times = phase_times(settings);
   if (!times.error.empty()) {
     std::fprintf(stderr, "push_recovery: %s\n", times.error.c_str());
     return 1;
@@ -333,10 +327,10 @@ int main(int argc, char** argv) {
   const double mass = mj_getTotalmass(probe.model());
   const int steps = int(std::floor(max_dv / dv_step + 1e-9));
   std::printf(
-      "push_recovery: %s, %.2f kg, walking %.2f m/s; %zu directions x %zu phases x %d "
-      "kicks of %g..%g m/s over %g s\n",
-      robot_name.c_str(), mass, kCommand.x(), directions.size(), phases.size(), steps, dv_step,
-      steps * dv_step, kPushDuration);
+      "push_recovery: %s, %.2f kg, walking %.2f m/s, %s feedback; %zu directions x %zu phases "
+      "x %d kicks of %g..%g m/s over %g s\n",
+      robot_name.c_str(), mass, kCommand.x(), feedback.c_str(), directions.size(), phases.size(),
+      steps, dv_step, steps * dv_step, kPushDuration);
   struct Row {
     std::string direction, phase;
     double dv;
@@ -351,8 +345,8 @@ int main(int argc, char** argv) {
       for (int i = 1; i <= steps; ++i) {
         const double dv = i * dv_step;
         std::string how;
-        const bool ok =
-            survives(mass * dv / kPushDuration * direction_vector(d), times.start.at(ph), how);
+        const bool ok = survives(settings, mass * dv / kPushDuration * direction_vector(d),
+                                 times.start.at(ph), how);
         rows.push_back({d, ph, dv, ok});
         std::printf("  %-8s %-9s dv %.2f m/s: %s (%s)\n", d.c_str(), ph.c_str(), dv,
                     ok ? "survived" : "FELL", how.c_str());
@@ -371,7 +365,7 @@ int main(int argc, char** argv) {
   std::vector<TerrainRow> walks;
   bool offset_held = true;
   for (const std::string& terrain : terrains) {
-    const TerrainWalk w = walk_on(terrain, distance);
+    const TerrainWalk w = walk_on(settings, terrain, distance);
     walks.push_back({terrain, w});
     std::printf(
         "terrain %-11s: %s, %.3f m ahead, %.1f mm off the line, yaw %.3f rad, %.1f s (%s)\n",

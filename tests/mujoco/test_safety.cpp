@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "support/edited_robot.hpp"
 #include "walkgen/simulation/simulated_tasks.hpp"
 
 namespace {
@@ -71,31 +72,13 @@ const char* name(Fault f) {
 
 /// A MujocoRobot whose reported measurement carries a fault from `at` seconds on; commands,
 /// physics and images are the MujocoRobot's.
-class FaultyRobot final : public walkgen::Robot {
+class FaultyRobot final : public walkgen_test::EditedRobot {
  public:
-  explicit FaultyRobot(walkgen::MujocoRobot& inner) : inner_(inner) { refresh(); }
+  explicit FaultyRobot(walkgen::MujocoRobot& inner) : EditedRobot(inner) { refresh(); }
 
   void inject(Fault fault, double at) {
     fault_ = fault;
     at_ = at;
-  }
-
-  const walkgen::RobotInfo& info() const override { return inner_.info(); }
-  walkgen::JointCommandStatus set_joint_targets(
-      const Eigen::Ref<const Eigen::VectorXd>& q) override {
-    return inner_.set_joint_targets(q);
-  }
-  walkgen::RobotStatus step(double duration) override {
-    const walkgen::RobotStatus s = inner_.step(duration);
-    refresh();
-    return s;
-  }
-  const walkgen::RobotOutput& output() const override { return out_; }
-  const walkgen::StereoImages& render_cameras() override { return inner_.render_cameras(); }
-  void reset() override {
-    inner_.reset();
-    extra_saturations_ = 0;
-    refresh();
   }
 
   int joint(const std::string& joint_name) const {
@@ -108,42 +91,40 @@ class FaultyRobot final : public walkgen::Robot {
   }
 
  private:
-  void refresh() {
-    out_ = inner_.output();
-    if (fault_ == Fault::none || out_.time < at_) return;
+  void on_reset() override { extra_saturations_ = 0; }
+  void edit(walkgen::RobotOutput& out) override {
+    if (fault_ == Fault::none || out.time < at_) return;
     switch (fault_) {
       case Fault::none:
         break;
       case Fault::nan_joint:
-        out_.q[joint("l_knee")] = kNan;
+        out.q[joint("l_knee")] = kNan;
         break;
       case Fault::joint_out_of_range:
-        out_.q[joint("l_knee")] = 10.0;
+        out.q[joint("l_knee")] = 10.0;
         break;
       case Fault::nan_joint_velocity:
-        out_.dq[joint("r_hip_pitch")] = kNan;
+        out.dq[joint("r_hip_pitch")] = kNan;
         break;
       case Fault::nan_force:
-        out_.ft[1].force_S.z() = kNan;
+        out.ft[1].force_S.z() = kNan;
         break;
       case Fault::huge_force:
-        out_.ft[1].force_S.z() = 1e6;
+        out.ft[1].force_S.z() = 1e6;
         break;
       case Fault::nan_imu:
-        out_.imu.angular_velocity_I.x() = kNan;
+        out.imu.angular_velocity_I.x() = kNan;
         break;
       case Fault::imu_out_of_range:
-        out_.imu.acceleration_I.z() = 981.0;
+        out.imu.acceleration_I.z() = 981.0;
         break;
       case Fault::saturating:
         extra_saturations_ += 7;
         break;
     }
-    out_.saturations += extra_saturations_;
+    out.saturations += extra_saturations_;
   }
 
-  walkgen::MujocoRobot& inner_;
-  walkgen::RobotOutput out_;
   Fault fault_ = Fault::none;
   double at_ = 0.0;
   long extra_saturations_ = 0;

@@ -46,6 +46,7 @@
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/foot.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/estimation/base_estimator.hpp"
 #include "walkgen/interpolation/polynomial.hpp"
 #include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/kinematics/ik_target.hpp"
@@ -166,14 +167,47 @@ constexpr const char* to_string(StopReason r) noexcept {
   return "unknown";
 }
 
+/// Where the CoM fed back to the NMPC comes from (WalkingLoopSettings::feedback).
+enum class FeedbackSource : std::uint8_t {
+  /// Forward kinematics of the measured joints from the support sole where the plan put it
+  /// (thesis §6.3): the CoM position only, blind to the robot tipping over a sole edge.
+  kinematics,
+  /// walkgen::BaseEstimator (IMU, leg kinematics, foot forces): the CoM position and velocity
+  /// where the robot really is, so that a push moves the planned footsteps. A robot without an
+  /// IMU (or a faulty estimate) is fed back from kinematics.
+  estimator,
+};
+
+/// The enumerator's name ("kinematics", "estimator"); "unknown" for a value out of range.
+constexpr const char* to_string(FeedbackSource f) noexcept {
+  switch (f) {
+    case FeedbackSource::kinematics:
+      return "kinematics";
+    case FeedbackSource::estimator:
+      return "estimator";
+  }
+  return "unknown";
+}
+
 /// Settings of the loop itself; the generator's are WalkingSettings (t, command_period,
 /// t_feedback), the solver's its own.
 struct WalkingLoopSettings {
   /// Feed the measured CoM back to the NMPC every WalkingSettings::t_feedback (§6.3).
   bool com_feedback = true;
-  /// Fraction of the measured − planned CoM position fed back, in (0, 1]. Velocity and
-  /// acceleration stay the plan's: differentiated joint measurements are too noisy to help.
+  /// Where the fed-back CoM comes from (docs/safety.md): kinematics (the thesis') or the
+  /// estimator (position and velocity).
+  FeedbackSource feedback = FeedbackSource::kinematics;
+  /// Kinematics feedback: fraction of the measured − planned CoM position fed back, in (0, 1].
+  /// Velocity and acceleration stay the plan's: differentiated joint measurements are too noisy
+  /// to help.
   double feedback_gain = 1.0;
+  /// Estimator feedback: fractions of the estimated − planned CoM position and velocity fed
+  /// back, in [0, 1]. Higher gains make the plan chase the servos' tracking error and the
+  /// walk oscillate (walkgen's humanoid: 0.5 / 0.6 already fail; docs/safety.md).
+  double estimated_position_gain = 0.3;
+  double estimated_velocity_gain = 0.3;
+  /// The estimator's settings (its sole links: the loop's own sole links are used).
+  BaseEstimatorSettings estimator = base_estimator_settings(walkgen_humanoid_description());
   /// Sole links of the tree (left, right): where the IK puts the feet and the feedback starts.
   /// Defaults: walkgen's humanoid (walkgen_humanoid_description()); loop_settings() takes them
   /// from any description.
@@ -218,6 +252,15 @@ struct WalkingLoopSettings {
 inline void validate(const WalkingLoopSettings& s) {
   check_argument(s.feedback_gain > 0.0 && s.feedback_gain <= 1.0,
                  "WalkingLoopSettings.feedback_gain", "a fraction in (0, 1]", s.feedback_gain);
+  check_argument(
+      s.feedback == FeedbackSource::kinematics || s.feedback == FeedbackSource::estimator,
+      "WalkingLoopSettings.feedback", "kinematics or estimator", int(s.feedback));
+  check_argument(s.estimated_position_gain >= 0.0 && s.estimated_position_gain <= 1.0,
+                 "WalkingLoopSettings.estimated_position_gain", "a fraction in [0, 1]",
+                 s.estimated_position_gain);
+  check_argument(s.estimated_velocity_gain >= 0.0 && s.estimated_velocity_gain <= 1.0,
+                 "WalkingLoopSettings.estimated_velocity_gain", "a fraction in [0, 1]",
+                 s.estimated_velocity_gain);
   check_argument(std::isfinite(s.transfer_time) && s.transfer_time >= 0.0,
                  "WalkingLoopSettings.transfer_time", "a duration >= 0 [s]", s.transfer_time);
   check_argument(s.max_qp_failures >= 1, "WalkingLoopSettings.max_qp_failures", "a count >= 1",
@@ -248,6 +291,7 @@ inline WalkingLoopSettings loop_settings(const RobotDescription& robot) {
   const bool sensors = !robot.ft_sensor_frames[0].empty();
   s.left_ft_sensor_link = sensors ? robot.ft_sensor_frames[0] : robot.sole_frames[0];
   s.right_ft_sensor_link = sensors ? robot.ft_sensor_frames[1] : robot.sole_frames[1];
+  s.estimator = base_estimator_settings(robot);
   return s;
 }
 
@@ -289,8 +333,12 @@ struct LoopTick {
   /// (MpcStatus::qp_failed); 0 after a tick that solved or did not run the NMPC.
   int qp_failure_streak = 0;
   bool fed_back = false;
+  /// The feedback came from the estimator (FeedbackSource::estimator with a started estimate).
+  bool estimated = false;
   /// Measured − planned CoM position at the feedback of this tick [m] (zero without one).
   Eigen::Vector2d com_error = Eigen::Vector2d::Zero();
+  /// Estimated − planned CoM velocity at the feedback [m/s] (zero without estimator feedback).
+  Eigen::Vector2d com_velocity_error = Eigen::Vector2d::Zero();
   /// Why, unless status is ok: the robot's message when it stopped, the NMPC's (MpcResult::
   /// message) when its QP failed or its plan did not converge, the fault's (which sensor, what
   /// streak) in LoopStatus::fault. Also the stop's reason while stopping or stopped on request.
@@ -316,7 +364,8 @@ class WalkingLoop {
         tree_(ik.tree()),
         ws_(tree_.make_workspace()),
         mpc_(settings),
-        interp_(interpolation_settings(settings)) {
+        interp_(interpolation_settings(settings)),
+        estimator_(tree_, robot.info().joint_names, estimator_settings(loop_)) {
     validate(loop_);
     const double ratio = settings.t_feedback / settings.t;
     check_argument(
@@ -386,6 +435,8 @@ class WalkingLoop {
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
     ik_.set_initial_guess(base_p_W_, base_R_W_, q_tree_);
+    estimating_ = loop_.feedback == FeedbackSource::estimator &&
+                  estimator_.reset(base_p_W_, robot_.output()) == EstimateStatus::ok;
     TrajectorySample<double> stand;  // the transfer: feet where they are, the CoM moving
     stand.left.motion = FootMotion<double>::at_rest(sole_pose(Foot::left));
     stand.right.motion = FootMotion<double>::at_rest(sole_pose(Foot::right));
@@ -430,6 +481,7 @@ class WalkingLoop {
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
     const Eigen::Vector3d c = com_W();
+    if (estimating_) anchor_estimate(support, support_pose);
     typename Mpc::State st;
     st.com_x << c.x(), 0.0, 0.0;
     st.com_y << c.y(), 0.0, 0.0;
@@ -537,6 +589,8 @@ class WalkingLoop {
 
   /// The generator, e.g. for obstacles (mpc().set_obstacles()) or its plan.
   Mpc& mpc() { return mpc_; }
+  /// The state estimator (updated every command period with FeedbackSource::estimator).
+  const BaseEstimator& estimator() const { return estimator_; }
   const Mpc& mpc() const { return mpc_; }
   const WalkingLoopSettings& settings() const { return loop_; }
   long ticks() const { return ticks_; }
@@ -549,7 +603,9 @@ class WalkingLoop {
     tick_.ik_failures = 0;
     tick_.qp_failure_streak = 0;
     tick_.fed_back = false;
+    tick_.estimated = false;
     tick_.com_error.setZero();
+    tick_.com_velocity_error.setZero();
     tick_.message.clear();
   }
 
@@ -814,8 +870,10 @@ class WalkingLoop {
     if (have_targets_ && robot_.set_joint_targets(q_robot_) != JointCommandStatus::accepted) {
       count_ik(false);
     }
-    if (robot_.step(dt) == RobotStatus::ok) return upright();
-    return robot_running();
+    if (robot_.step(dt) != RobotStatus::ok) return robot_running();
+    // A faulty reading leaves the estimate where it was; measurement_ok() reports the reading.
+    if (estimating_) estimate_ok_ = estimator_.update(robot_.output(), dt) == EstimateStatus::ok;
+    return upright();
   }
 
   /// False (fault fallen entered) when the robot's IMU tilts beyond max_tilt; true without an
@@ -864,23 +922,63 @@ class WalkingLoop {
     return {p.x(), p.y(), yaw_of(R)};
   }
 
-  /// §6.3: the CoM of the measured joints, from the support sole where the plan has it. The
-  /// measurement passed its checks after the last sample, so the CoM is finite.
+  /// The estimator's settings with the loop's sole links.
+  static BaseEstimatorSettings estimator_settings(const WalkingLoopSettings& loop) {
+    BaseEstimatorSettings s = loop.estimator;
+    s.sole_links = {loop.left_sole_link, loop.right_sole_link};
+    return s;
+  }
+
+  /// The map from the estimator's frame to the generator's (a yaw and a shift in the ground
+  /// plane) that puts the estimated `support` sole at `pose`, with the base's yaw of
+  /// place_on_sole() (called before, with the same sole).
+  void anchor_estimate(Foot support, const FootPose<double>& pose) {
+    const BaseEstimate& e = estimator_.estimate();
+    to_generator_ = Eigen::Rotation2Dd(yaw_of(base_R_W_) - yaw_of(e.base_rotation_W));
+    const Eigen::Vector2d sole = e.sole_W[support == Foot::left ? 0 : 1].head<2>();
+    to_generator_shift_ = Eigen::Vector2d(pose.x, pose.y) - to_generator_ * sole;
+    estimate_ok_ = true;
+  }
+
+  /// §6.3: the CoM of the measured joints, from the support sole where the plan has it; or,
+  /// with estimator feedback, the estimated CoM position and velocity in the generator's frame.
+  /// The measurement passed its checks after the last sample, so the CoM is finite.
   void feed_back() {
-    const RobotOutput& m = robot_.output();
-    to_tree_order(m.q);
     typename Mpc::State st = mpc_.state();
-    place_on_sole(st.support_foot, st.support);
-    const Eigen::Vector3d c = com_W();
-    if (!c.allFinite()) {
+    Eigen::Vector3d c;
+    Eigen::Vector2d v = Eigen::Vector2d(st.com_x[1], st.com_y[1]);
+    const bool estimated = estimating_ && estimate_ok_;
+    if (estimated) {
+      const BaseEstimate& e = estimator_.estimate();
+      // Relative to the support sole where the plan has it: a sole that landed off its planned
+      // place does not read as a CoM error, a robot tipping over its sole's edge does.
+      const std::size_t support = st.support_foot == Foot::left ? 0 : 1;
+      const Eigen::Vector2d sole = e.sole_W[support].head<2>();
+      c.head<2>() =
+          Eigen::Vector2d(st.support.x, st.support.y) + to_generator_ * (e.com_W.head<2>() - sole);
+      c.z() = e.com_W.z();
+      v = to_generator_ * e.com_velocity_W.head<2>();
+    } else {
+      to_tree_order(robot_.output().q);
+      place_on_sole(st.support_foot, st.support);
+      c = com_W();
+    }
+    if (!c.allFinite() || !v.allFinite()) {
       enter_fault(StopReason::sensor_fault, "feedback: the measured CoM is not finite");
       return;
     }
     tick_.com_error = Eigen::Vector2d(c.x() - st.com_x[0], c.y() - st.com_y[0]);
-    st.com_x[0] += loop_.feedback_gain * tick_.com_error.x();
-    st.com_y[0] += loop_.feedback_gain * tick_.com_error.y();
+    const double gain = estimated ? loop_.estimated_position_gain : loop_.feedback_gain;
+    st.com_x[0] += gain * tick_.com_error.x();
+    st.com_y[0] += gain * tick_.com_error.y();
+    if (estimated) {
+      tick_.com_velocity_error = Eigen::Vector2d(v.x() - st.com_x[1], v.y() - st.com_y[1]);
+      st.com_x[1] += loop_.estimated_velocity_gain * tick_.com_velocity_error.x();
+      st.com_y[1] += loop_.estimated_velocity_gain * tick_.com_velocity_error.y();
+    }
     mpc_.set_state(st);
     tick_.fed_back = true;
+    tick_.estimated = estimated;
   }
 
   WalkingLoopSettings loop_;
@@ -890,6 +988,12 @@ class WalkingLoop {
   typename KinematicTree<double>::Workspace ws_;
   Mpc mpc_;
   WalkingInterpolator<double> interp_;
+  BaseEstimator estimator_;
+  bool estimating_ = false;   ///< estimator feedback, with the estimate started at start()
+  bool estimate_ok_ = false;  ///< the last estimator update took its measurement
+  /// The estimator's frame → the generator's, in the ground plane (anchor_estimate()).
+  Eigen::Rotation2Dd to_generator_ = Eigen::Rotation2Dd(0.0);
+  Eigen::Vector2d to_generator_shift_ = Eigen::Vector2d::Zero();
   int feedback_every_ = 1;
   int sole_[2] = {0, 0};
   int sensor_[2] = {0, 0};

@@ -294,6 +294,7 @@ class MujocoRobot final : public Robot {
       for (std::size_t i = 0; i < joints_.size(); ++i)
         data_->ctrl[joints_[i].actuator] = q_target_[static_cast<Eigen::Index>(i)];
       for (long k = 0; k < steps; ++k) {
+        apply_push();
         mj_step(model_.get(), data_.get());
         if (check_state()) break;
       }
@@ -303,6 +304,7 @@ class MujocoRobot final : public Robot {
       dq_ref_ = (q_target_ - q_from_) / (double(steps) * model_->opt.timestep);
       for (long k = 0; k < steps; ++k) {
         q_ref_ = q_from_ + (double(k + 1) / double(steps)) * (q_target_ - q_from_);
+        apply_push();
         mj_step1(model_.get(), data_.get());  // positions, velocities, contacts, bias forces
         apply_joint_torques();
         mj_step2(model_.get(), data_.get());
@@ -384,7 +386,22 @@ class MujocoRobot final : public Robot {
                    "'" + name + "'");
   }
 
+  /// Pushes the robot: `force_W` [N] (world frame) on the base body, at its centre of mass,
+  /// from simulated time `start_time` for `duration` seconds (a kick: the robot's momentum
+  /// changes by force_W · duration). A later call replaces the push; reset() cancels it.
+  /// @throws walkgen::invalid_argument for a non-finite force or start time, or a duration
+  ///   not > 0.
+  void push(const Eigen::Vector3d& force_W, double start_time, double duration) {
+    check_argument(force_W.allFinite() && std::isfinite(start_time), "MujocoRobot::push",
+                   "a finite force and start time", "NaN or inf");
+    check_positive("MujocoRobot::push: duration", duration, "a finite duration > 0 s");
+    push_force_ = force_W;
+    push_from_ = start_time;
+    push_to_ = start_time + duration;
+  }
+
   void reset() override {
+    push_from_ = push_to_ = 0.0;
     mj_resetData(model_.get(), data_.get());
     if (keyframe_ >= 0) {
       mj_resetDataKeyframe(model_.get(), data_.get(), keyframe_);
@@ -869,6 +886,15 @@ class MujocoRobot final : public Robot {
   }
 
   /// Checks the state after a physics step; true when the robot stopped.
+  /// The force of push() on the base while the step at data_->time lies in its interval.
+  void apply_push() {
+    const double t = data_->time, half = 0.5 * model_->opt.timestep;
+    const bool pushing = t >= push_from_ - half && t < push_to_ - half;
+    for (int i = 0; i < 3; ++i) {
+      data_->xfrc_applied[6 * base_body_ + i] = pushing ? push_force_[i] : 0.0;
+    }
+  }
+
   bool check_state() {
     const mjModel* m = model_.get();
     const mjData* d = data_.get();
@@ -1026,6 +1052,8 @@ class MujocoRobot final : public Robot {
   std::array<BodyFrame, 2> soles_;
   std::vector<int> foot_of_body_;
   int base_body_ = -1;
+  Eigen::Vector3d push_force_ = Eigen::Vector3d::Zero();  ///< [N] push(), world frame
+  double push_from_ = 0.0, push_to_ = 0.0;                ///< [s] push()'s interval
   int keyframe_ = -1;
   Eigen::VectorXd q_target_;
   RobotOutput output_;
