@@ -54,7 +54,8 @@ void step_velocity_table() {
   table(
       "| step_velocity_weight | straight (0.1, 0, 0) | sideways (0, 0.1, 0) | "
       "curved (0.1, 0, 0.1) | turn (0, 0, 0.2) |\n|---|---|---|---|---|\n",
-      {0.0, 1.0, 3.0, 10.0, 30.0}, [](Settings& s, double w) { s.step_velocity_weight = w; },
+      {0.0, 1.0, 10.0, 30.0, 100.0, 300.0},
+      [](Settings& s, double w) { s.step_velocity_weight = w; },
       [](const Settings& s) {
         std::printf("| %g |", s.step_velocity_weight);
         for (const char* name : {"straight", "sideways", "curved", "turn"}) {
