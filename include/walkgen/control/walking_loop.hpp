@@ -481,7 +481,7 @@ class WalkingLoop {
     to_tree_order(robot_.output().q);
     place_on_sole(support, support_pose);
     const Eigen::Vector3d c = com_W();
-    if (estimating_) anchor_estimate(support, support_pose);
+    if (estimating_) anchor_estimate();
     typename Mpc::State st;
     st.com_x << c.x(), 0.0, 0.0;
     st.com_y << c.y(), 0.0, 0.0;
@@ -929,14 +929,12 @@ class WalkingLoop {
     return s;
   }
 
-  /// The map from the estimator's frame to the generator's (a yaw and a shift in the ground
-  /// plane) that puts the estimated `support` sole at `pose`, with the base's yaw of
-  /// place_on_sole() (called before, with the same sole).
-  void anchor_estimate(Foot support, const FootPose<double>& pose) {
-    const BaseEstimate& e = estimator_.estimate();
-    to_generator_ = Eigen::Rotation2Dd(yaw_of(base_R_W_) - yaw_of(e.base_rotation_W));
-    const Eigen::Vector2d sole = e.sole_W[support == Foot::left ? 0 : 1].head<2>();
-    to_generator_shift_ = Eigen::Vector2d(pose.x, pose.y) - to_generator_ * sole;
+  /// The yaw from the estimator's frame to the generator's: the base's of place_on_sole()
+  /// (called before) against the estimate's. Positions are fed back relative to the support
+  /// sole, so no shift is needed.
+  void anchor_estimate() {
+    to_generator_ =
+        Eigen::Rotation2Dd(yaw_of(base_R_W_) - yaw_of(estimator_.estimate().base_rotation_W));
     estimate_ok_ = true;
   }
 
@@ -991,9 +989,8 @@ class WalkingLoop {
   BaseEstimator estimator_;
   bool estimating_ = false;   ///< estimator feedback, with the estimate started at start()
   bool estimate_ok_ = false;  ///< the last estimator update took its measurement
-  /// The estimator's frame → the generator's, in the ground plane (anchor_estimate()).
+  /// The estimator's frame → the generator's: a yaw (anchor_estimate()).
   Eigen::Rotation2Dd to_generator_ = Eigen::Rotation2Dd(0.0);
-  Eigen::Vector2d to_generator_shift_ = Eigen::Vector2d::Zero();
   int feedback_every_ = 1;
   int sole_[2] = {0, 0};
   int sensor_[2] = {0, 0};
