@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "support/edited_robot.hpp"
+#include "edited_robot.hpp"
 #include "support/expect_error.hpp"
 #include "walkgen/simulation/simulated_tasks.hpp"
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "support/edited_robot.hpp"
+#include "edited_robot.hpp"
 #include "walkgen/simulation/simulated_tasks.hpp"
 
 namespace {
