@@ -8,7 +8,7 @@
 //   push_recovery [--robot NAME] [--out DIR] [--max-dv V] [--dv-step V] [--directions LIST]
 //                 [--phases LIST] [--require-survival V] [--terrains LIST] [--distance D]
 //                 [--max-offset V] [--feedback SOURCE] [--position-gain G]
-//                 [--velocity-gain G] [--no-plot]
+//                 [--velocity-gain G] [--smooth-feedback] [--no-plot]
 //     --robot NAME          walkgen_humanoid (the G1 does not walk yet: issue 23)
 //     --out DIR             output folder, created if missing (default: .)
 //     --max-dv V            the largest velocity change [m/s] (default 0.6)
@@ -29,6 +29,8 @@
 //     --position-gain G     estimator feedback: fraction of the CoM position error fed back
 //                           (default 0.3, WalkingLoopSettings::estimated_position_gain)
 //     --velocity-gain G     estimator feedback: fraction of the CoM velocity error (default 0.3)
+//     --smooth-feedback     the executed CoM blends into each restarted plan over the tick
+//                           instead of jumping to it (WalkingLoopSettings::smooth_feedback)
 //     --no-plot             CSV only (the plot needs /usr/bin/python3 with matplotlib)
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help lists every option.
 //
@@ -305,6 +307,9 @@ int main(int argc, char** argv) {
   app.add_option("--velocity-gain", settings.estimated_velocity_gain,
                  "estimator feedback: fraction of the CoM velocity error fed back")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--smooth-feedback", settings.smooth_feedback,
+               "blend the executed CoM into each restarted plan over the tick instead of jumping "
+               "(WalkingLoopSettings::smooth_feedback)");
   app.add_flag("--no-plot", no_plot,
                "CSV only, no push_survival.png (plotting needs /usr/bin/python3 with matplotlib)");
   WALKGEN_CLI_PARSE(app, argc, argv);

@@ -206,6 +206,12 @@ struct WalkingLoopSettings {
   /// walk oscillate (walkgen's humanoid: 0.5 / 0.6 already fail; docs/safety.md).
   double estimated_position_gain = 0.3;
   double estimated_velocity_gain = 0.3;
+  /// Feedback without jumps (docs/safety.md): after a feedback the executed CoM blends from
+  /// where the previous command left it (position, velocity, acceleration) into the restarted
+  /// plan over the tick, along a quintic offset that ends at zero; the ZMP of the pattern moves
+  /// with the offset's LIPM ZMP. False: the command jumps to the restarted plan (the thesis),
+  /// and the servos' step excites the robot (the measured ZMP rings for about 0.3 s).
+  bool smooth_feedback = false;
   /// The estimator's settings (its sole links: the loop's own sole links are used).
   BaseEstimatorSettings estimator = base_estimator_settings(walkgen_humanoid_description());
   /// Sole links of the tree (left, right): where the IK puts the feet and the feedback starts.
@@ -545,6 +551,7 @@ class WalkingLoop {
                                                 "): stopping after the current step");
       }
       interp_.interpolate(mpc_.tick_plan(), plan_.data());
+      if (tick_.fed_back && loop_.smooth_feedback && ticks_ > 0) blend_into_plan();
     } else {
       qp_streak_ = 0;
     }
@@ -656,6 +663,33 @@ class WalkingLoop {
   bool robot_stopped() const {
     return mode_ == LoopMode::fault &&
            (reason_ == StopReason::fallen || reason_ == StopReason::diverged);
+  }
+
+  /// smooth_feedback: adds to the tick's plan (samples at τ = k dt from the restarted state) the
+  /// quintic offset that starts at the previous command carried on by dt − the restarted state
+  /// (position, velocity, acceleration) and ends at zero where the next tick begins, with its
+  /// LIPM ZMP (eq. 2.6–2.7).
+  void blend_into_plan() {
+    const typename Mpc::State& st = mpc_.state();
+    const double dt = interp_.command_period();
+    const double T = dt * double(plan_.size());
+    const auto offset = [&](const Eigen::Vector3d& was, const Eigen::Vector3d& now) {
+      const Eigen::Vector3d carried(was[0] + was[1] * dt + was[2] * dt * dt / 2.0,
+                                    was[1] + was[2] * dt, was[2]);
+      const Eigen::Vector3d e = carried - now;
+      return quintic(T, Sample3<double>{e[0], e[1], e[2]}, Sample3<double>{0.0, 0.0, 0.0});
+    };
+    const Polynomial<double, 5> ox = offset(last_sample_.com_x, st.com_x);
+    const Polynomial<double, 5> oy = offset(last_sample_.com_y, st.com_y);
+    const double h_g = mpc_.settings().com_z / mpc_.settings().gravity;
+    for (std::size_t k = 0; k < plan_.size(); ++k) {
+      const Sample3<double> x = ox.evaluate(dt * double(k)), y = oy.evaluate(dt * double(k));
+      TrajectorySample<double>& p = plan_[k];
+      p.com_x += Eigen::Vector3d(x.position, x.velocity, x.acceleration);
+      p.com_y += Eigen::Vector3d(y.position, y.velocity, y.acceleration);
+      p.zmp_x += x.position - h_g * x.acceleration;
+      p.zmp_y += y.position - h_g * y.acceleration;
+    }
   }
 
   /// False (fault entered) when the robot reports that it stopped.
