@@ -176,8 +176,8 @@ TEST(EstimatedFeedback, WalksStraightLikeTheKinematicFeedback) {
 }
 
 // WalkingLoopSettings::smooth_feedback: the thesis' kinematic feedback restarts the plan from a
-// CoM that lags the command by the servos' error, so the executed CoM steps by about a
-// millimetre every tick and the measured ZMP rings; blended, the command stays continuous and
+// CoM that lags the command by the servos' error, so the executed CoM steps (by up to 5 mm) at
+// the first sample of a tick and the measured ZMP rings; blended, the command stays continuous and
 // the ZMP is tracked more closely (docs/safety.md: 5.4 -> 0.03 mm, 36.7 -> 29.6 mm).
 TEST(SmoothFeedback, KeepsTheExecutedCoMContinuousAndTracksTheZmpCloser) {
   constexpr int kTicks = 50;  // 20 s
