@@ -1,6 +1,7 @@
 # Helpers for walkgen's own tests, benchmarks and examples (never used by consumers).
 #
-#   walkgen_add_test(NAME <name> SOURCES <files...> [LIBS <libs...>] [LABELS <labels...>])
+#   walkgen_add_test(NAME <name> SOURCES <files...> [LIBS <libs...>] [LABELS <labels...>]
+#                    [NO_PRECOMPILED])
 #   walkgen_add_benchmark(NAME <name> SOURCES <files...> [LIBS <libs...>])
 #   walkgen_add_example(NAME <name> SOURCES <files...> [LIBS <libs...>] [ARGS <args...>]
 #                       [CASES <cases...>])
@@ -9,6 +10,11 @@
 # Relative SOURCES are relative to the calling CMakeLists.txt. Every target gets our warning flags
 # (never the INTERFACE library itself). Tests can include "support/..." (test helpers) from tests/;
 # examples and benchmarks cannot: what they share with tests is in the library (include/walkgen/).
+#
+# Tests and examples compile the heavy templates (WalkingMpc<double, 16>, the closed loop) once,
+# in libraries they link (CMakeLists.txt, "The project's programs compile the heavy templates
+# once"); NO_PRECOMPILED keeps a test header-only, e.g. one that compiles walkgen with flags of
+# its own. Benchmarks always compile walkgen header-only, as a user does.
 include_guard(GLOBAL)
 
 set(_walkgen_helpers_dir "${CMAKE_CURRENT_LIST_DIR}")
@@ -34,7 +40,8 @@ endfunction()
 # A GoogleTest executable; each TEST() becomes one ctest through gtest_discover_tests.
 # Default label: "unit".
 function(walkgen_add_test)
-  cmake_parse_arguments(_arg "" "NAME;FIXTURES_REQUIRED" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(_arg "NO_PRECOMPILED" "NAME;FIXTURES_REQUIRED" "SOURCES;LIBS;LABELS"
+                        ${ARGN})
   _walkgen_check_args(walkgen_add_test)
   if(NOT _arg_SOURCES)
     message(FATAL_ERROR "walkgen_add_test(${_arg_NAME}): SOURCES is required")
@@ -59,6 +66,9 @@ function(walkgen_add_test)
   target_include_directories(${_arg_NAME} PRIVATE "${PROJECT_SOURCE_DIR}/tests")
   target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   walkgen_target_warnings(${_arg_NAME})
+  if(NOT _arg_NO_PRECOMPILED)
+    set_property(GLOBAL APPEND PROPERTY WALKGEN_PRECOMPILED_CONSUMERS ${_arg_NAME})
+  endif()
 
   # ctest names are "<executable>.<Suite>.<Test>", unique across executables.
   gtest_discover_tests(${_arg_NAME}
@@ -147,6 +157,7 @@ function(walkgen_add_example)
   target_compile_definitions(${_arg_NAME} PRIVATE WALKGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   walkgen_target_warnings(${_arg_NAME})
   set_property(GLOBAL APPEND PROPERTY WALKGEN_EXAMPLE_TARGETS ${_arg_NAME})
+  set_property(GLOBAL APPEND PROPERTY WALKGEN_PRECOMPILED_CONSUMERS ${_arg_NAME})
 
   set(_out "${CMAKE_BINARY_DIR}/example_output")
   file(MAKE_DIRECTORY "${_out}")
@@ -205,4 +216,31 @@ function(walkgen_add_compile_fail_test)
   # Two builds in one build tree at once would fight over the generator's state files.
   set_tests_properties(${_arg_NAME} PROPERTIES
     LABELS compile_fail TIMEOUT 300 RESOURCE_LOCK walkgen_build_tree)
+endfunction()
+
+# Links every test and example registered in WALKGEN_PRECOMPILED_CONSUMERS to the instantiations
+# compiled once (CMakeLists.txt, "The project's programs compile the heavy templates once"):
+# those that link walkgen::simulation (directly or through walkgen::navigation) to the closed
+# loop (src/simulation_loop_16.hpp), the others to WalkingMpc<double, 16>
+# (walkgen/mpc/walking_mpc_16.hpp). The header is force-included, so the sources stay as a user
+# writes them. Call it once, after the last test and example.
+function(walkgen_link_precompiled)
+  get_property(_targets GLOBAL PROPERTY WALKGEN_PRECOMPILED_CONSUMERS)
+  foreach(_target IN LISTS _targets)
+    get_target_property(_libs ${_target} LINK_LIBRARIES)
+    if(TARGET walkgen_simulation_loop_16 AND
+       ("walkgen::simulation" IN_LIST _libs OR "walkgen::navigation" IN_LIST _libs))
+      set(_library walkgen_simulation_loop_16)
+      set(_header "${PROJECT_SOURCE_DIR}/src/simulation_loop_16.hpp")
+    else()
+      set(_library walkgen::walking_mpc_16)
+      set(_header "${PROJECT_SOURCE_DIR}/include/walkgen/mpc/walking_mpc_16.hpp")
+    endif()
+    target_link_libraries(${_target} PRIVATE ${_library})
+    if(MSVC)
+      target_compile_options(${_target} PRIVATE "/FI${_header}")
+    else()
+      target_compile_options(${_target} PRIVATE "SHELL:-include \"${_header}\"")
+    endif()
+  endforeach()
 endfunction()

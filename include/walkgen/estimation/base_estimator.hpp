@@ -260,10 +260,10 @@ class BaseEstimator {
   void predict(double dt) {
     x_.segment<3>(0) += x_.segment<3>(3) * dt + 0.5 * dt * dt * acc_W_;
     x_.segment<3>(3) += acc_W_ * dt;
-    // P = F P Fᵀ + Q with F = I + dt (p ← v).
-    Matrix12 F = Matrix12::Identity();
-    F.block<3, 3>(0, 3).diagonal().setConstant(dt);
-    P_ = F * P_ * F.transpose();
+    // P = F P Fᵀ + Q with F = I + dt (p ← v): F P adds dt × the velocity rows to the position
+    // rows, (F P) Fᵀ dt × the velocity columns to the position columns.
+    P_.topRows<3>() += dt * P_.middleRows<3>(3);
+    P_.leftCols<3>() += dt * P_.middleCols<3>(3);
     const double qa = square(settings_.acceleration_noise);
     for (int i = 0; i < 3; ++i) {
       P_(i, i) += qa * dt * dt * dt / 3.0;
@@ -293,13 +293,16 @@ class BaseEstimator {
     correct(H, v_measured, square(settings_.contact_velocity_noise));
   }
 
-  /// The Kalman correction by z = H x + e, e ~ N(0, variance I), in Joseph form.
+  /// The Kalman correction by z = H x + e, e ~ N(0, variance I): P ← P − K H P (with the optimal
+  /// gain, the Joseph form's value), symmetrised. Written with P Hᵀ (12×3) rather than 12×12
+  /// products: each fixed-size product costs every including file compile time.
   void correct(const Eigen::Matrix<double, 3, 12>& H, const Eigen::Vector3d& z, double variance) {
-    const Eigen::Matrix3d S = H * P_ * H.transpose() + variance * Eigen::Matrix3d::Identity();
-    const Eigen::Matrix<double, 12, 3> K = P_ * H.transpose() * S.inverse();
+    const Eigen::Matrix<double, 12, 3> PHt = P_ * H.transpose();
+    const Eigen::Matrix3d S = H * PHt + variance * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix<double, 12, 3> K = PHt * S.inverse();
     x_ += K * (z - H * x_);
-    const Matrix12 A = Matrix12::Identity() - K * H;
-    P_ = A * P_ * A.transpose() + variance * K * K.transpose();
+    P_ -= K * PHt.transpose();
+    P_ = 0.5 * (P_ + P_.transpose()).eval();
   }
 
   /// The estimate from the state: FK at the estimated base for the CoM and its Jacobian.

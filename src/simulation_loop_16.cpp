@@ -1,0 +1,13 @@
+/// @file
+/// walkgen_simulation_loop_16 (CMakeLists.txt; walkgen's own tests and examples only): the one
+/// translation unit that compiles KinematicTree<double>, HumanoidIk and SimLoop for the programs
+/// that get src/simulation_loop_16.hpp force-included.
+#include "simulation_loop_16.hpp"
+
+namespace walkgen {
+
+template class KinematicTree<double>;
+template class CeresInverseKinematics<kHumanoidJoints>;
+template class WalkingLoop<16, HumanoidIk>;
+
+}  // namespace walkgen
