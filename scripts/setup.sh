@@ -12,6 +12,7 @@ packages=(
   libcli11-dev shellcheck
   clang libclang-rt-14-dev
   ffmpeg tmux clang-format python3-numpy python3-matplotlib
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()

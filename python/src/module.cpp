@@ -1,0 +1,16 @@
+/// @file
+/// walkgen._core: the compiled part of the Python package walkgen (python/walkgen/__init__.py
+/// re-exports it). docs/python.md is the guide.
+
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+#include "walkgen/version.hpp"
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "walkgen: NMPC walking pattern generation (C++ core, see docs/python.md)";
+  m.attr("__version__") = walkgen::kVersion;
+  walkgen::python::bind_qp(m);
+  walkgen::python::bind_settings(m);
+  walkgen::python::bind_mpc(m);
+}

@@ -1,0 +1,47 @@
+"""walkgen: NMPC walking pattern generation for humanoid robots, from Python.
+
+The C++ core (walkgen._core, built with pybind11) does the work; this package re-exports it.
+docs/python.md is the guide. A first plan:
+
+    import walkgen
+    mpc = walkgen.WalkingMpc(walkgen.WalkingSettings.hrp2())
+    mpc.set_command(0.2)            # 0.2 m/s forward
+    for _ in range(60):
+        result = mpc.solve()        # one NMPC tick
+        mpc.advance()               # 0.1 s along the plan
+    print(mpc.state().com_x)        # the CoM has walked about 1 m
+"""
+
+from ._core import (  # noqa: F401 (re-exported)
+    CircleObstacle,
+    CommandStatus,
+    DenseQp,
+    Foot,
+    FootPose,
+    MpcResult,
+    MpcStatus,
+    QpResult,
+    QpSettings,
+    QpStatus,
+    WalkingMpc,
+    WalkingSettings,
+    WalkingState,
+    __version__,
+)
+
+__all__ = [
+    "CircleObstacle",
+    "CommandStatus",
+    "DenseQp",
+    "Foot",
+    "FootPose",
+    "MpcResult",
+    "MpcStatus",
+    "QpResult",
+    "QpSettings",
+    "QpStatus",
+    "WalkingMpc",
+    "WalkingSettings",
+    "WalkingState",
+    "__version__",
+]
