@@ -5,11 +5,12 @@
 /// `extern template`, on top of the precompiled WalkingMpc<double, 16> of
 /// walkgen/mpc/walking_mpc_16.hpp. CMakeLists.txt ("The project's programs compile the heavy
 /// templates once") force-includes this header into every test and example that links
-/// walkgen::simulation and links them to walkgen_simulation_loop_16 (src/simulation_loop_16.cpp),
-/// which instantiates the three once: a closed-loop test then compiles in a third of the time
-/// (test_balance.cpp under the sanitizers: 161 s -> 53 s of CPU). The code is the library's
-/// headers, unchanged; only where it is compiled moves. Users compile walkgen header-only, or
-/// opt into walkgen::walking_mpc_16 (docs/walking.md, "Compile time").
+/// walkgen::simulation and links them to walkgen_simulation_loop_16 (src/simulation_loop_16.cpp,
+/// with its own copy of src/walking_mpc_16.cpp), which instantiates the three once: a closed-loop
+/// test then compiles in a third of the time (test_balance.cpp under the sanitizers: 161 s -> 53 s
+/// of CPU). The code is the library's headers, unchanged; only where it is compiled moves. Users
+/// compile walkgen header-only, or opt into walkgen::walking_mpc_16 (docs/walking.md, "Compile
+/// time").
 
 #include "walkgen/mpc/walking_mpc_16.hpp"
 #include "walkgen/simulation/humanoid_loop.hpp"
