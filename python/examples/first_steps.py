@@ -6,9 +6,7 @@ forward for 60 ticks (6 s), with its plan plotted (docs/python.md walks through 
 """
 
 import argparse
-import os
 import sys
-import tempfile
 
 import numpy as np
 
@@ -51,6 +49,8 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+
+        from walkgen.plots import save_figure
         com, zmp, feet = np.array(com), np.array(zmp), np.unique(np.array(feet), axis=0)
         fig, ax = plt.subplots(figsize=(8, 3.5))
         ax.plot(com[:, 0], com[:, 1], label="CoM")
@@ -61,11 +61,7 @@ def main():
         ax.set_aspect("equal")
         ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0))
         fig.tight_layout()
-        # Written atomically: a temporary file beside the target, then renamed.
-        directory = os.path.dirname(os.path.abspath(args.out))
-        with tempfile.NamedTemporaryFile(dir=directory, suffix=".png", delete=False) as tmp:
-            fig.savefig(tmp.name, dpi=100)
-        os.replace(tmp.name, args.out)
+        save_figure(fig, args.out)  # atomically: a temporary file, then renamed
         print(f"wrote {args.out}")
     return 0
 

@@ -14,6 +14,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "walkgen/interpolation/trajectory.hpp"
 #include "walkgen/mpc/walking_mpc.hpp"
 
 namespace walkgen::python {
@@ -33,6 +34,37 @@ struct PyMpcResult {
   CommandStatus last_command = CommandStatus::accepted;
   py::array_t<double> command;
 };
+
+/// The current tick's plan sampled at the command period (walkgen/interpolation/trajectory.hpp):
+/// (t / command_period, 21) in the thesis's CSV column order (trajectory_columns), and per
+/// sample the time, the support foot (0 left, 1 right) and whether both feet are down.
+py::dict interpolate(const Mpc& mpc, std::optional<double> command_period) {
+  InterpolationSettings<double> is = interpolation_settings(mpc.settings());
+  if (command_period) is.command_period = *command_period;
+  const WalkingInterpolator<double> interpolator(is);
+  std::vector<TrajectorySample<double>> samples(
+      static_cast<std::size_t>(interpolator.samples_per_tick()));
+  interpolator.interpolate(mpc.tick_plan(), samples.data());
+  const auto k = static_cast<Eigen::Index>(samples.size());
+  Eigen::MatrixXd table(k, 21);
+  Eigen::VectorXd time(k), support(k), double_support(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const auto& t = samples[static_cast<std::size_t>(i)];
+    table.row(i) << t.com_x.transpose(), t.com_y.transpose(), t.com_z, t.com_q.transpose(), t.zmp_x,
+        t.zmp_y, t.zmp_z, t.left.motion.x.position, t.left.motion.y.position, t.left.z.position,
+        t.left.motion.q.position, t.right.motion.x.position, t.right.motion.y.position,
+        t.right.z.position, t.right.motion.q.position;
+    time[i] = t.time;
+    support[i] = t.support_foot == Foot::left ? 0.0 : 1.0;
+    double_support[i] = t.double_support ? 1.0 : 0.0;
+  }
+  py::dict out;
+  out["samples"] = to_numpy(table);
+  out["time"] = to_numpy(time);
+  out["support_foot"] = to_numpy(support).attr("astype")("int8");
+  out["double_support"] = to_numpy(double_support).attr("astype")("bool");
+  return out;
+}
 
 PyMpcResult copy_result(const Mpc::Result& r) {
   PyMpcResult out;
@@ -134,6 +166,17 @@ std::string result_repr(const PyMpcResult& r) {
 }  // namespace
 
 void bind_mpc(py::module_& m) {
+  {
+    py::list columns;
+    std::string header = trajectory_csv_header();
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = header.find(',', start);
+      columns.append(header.substr(start, comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    m.attr("trajectory_columns") = py::tuple(columns);
+  }
   py::enum_<MpcStatus> status(m, "MpcStatus", "Outcome of a generator tick.");
   status.value("solved", MpcStatus::solved)
       .value("qp_failed", MpcStatus::qp_failed)
@@ -229,7 +272,12 @@ void bind_mpc(py::module_& m) {
           py::arg("obstacles"),
           "Replaces the obstacles: CircleObstacle or (x, y, radius[, margin]) items, at most "
           "obstacle_capacity.")
-      .def_property_readonly("obstacles", &Mpc::obstacles)
+      .def_property_readonly(  // a copy: the generator reuses its storage
+          "obstacles",
+          [](const Mpc& mpc) {
+            const auto& o = mpc.obstacles();
+            return std::vector<CircleObstacle<double>>(o.begin(), o.end());
+          })
       .def(
           "solve",
           [](Mpc& mpc) {
@@ -266,6 +314,10 @@ void bind_mpc(py::module_& m) {
             return to_numpy(out);
           },
           "Planned CoM jerks (horizon, 2).")
+      .def("interpolate", &interpolate, py::arg("command_period") = py::none(),
+           "This tick's plan at the command period (default settings.command_period): a dict "
+           "with 'samples' (k, 21) in the columns of walkgen.trajectory_columns, 'time' (k,), "
+           "'support_foot' (k,) 0 left / 1 right and 'double_support' (k,). Call after solve().")
       .def(
           "decision_vector", [](const Mpc& mpc) { return to_numpy(mpc.plan().U); },
           "The plan's decision vector U (layout in walking_layout.hpp).");

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_core, m) {
   walkgen::python::bind_qp(m);
   walkgen::python::bind_settings(m);
   walkgen::python::bind_mpc(m);
+  walkgen::python::bind_envs(m);
 }

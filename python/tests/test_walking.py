@@ -163,3 +163,34 @@ def test_identical_runs_are_deterministic():
     walk(a, 25, vx=0.2, wz=0.1)
     walk(b, 25, vx=0.2, wz=0.1)
     np.testing.assert_array_equal(a.decision_vector(), b.decision_vector())
+
+
+def test_interpolated_samples_join_the_ticks_and_obey_the_pendulum():
+    s = walkgen.WalkingSettings.hrp2()
+    mpc = walkgen.WalkingMpc(s)
+    walk(mpc, 12, vx=0.2)
+    mpc.solve()
+    out = mpc.interpolate()
+    k = round(s.t / s.command_period)
+    assert out["samples"].shape == (k, 21) and len(walkgen.trajectory_columns) == 21
+    col = {name: i for i, name in enumerate(walkgen.trajectory_columns)}
+    samples, state = out["samples"], mpc.state()
+    np.testing.assert_allclose(out["time"], state.time + s.command_period * np.arange(k))
+    np.testing.assert_allclose(samples[0, [col["com_x"], col["com_dx"], col["com_ddx"]]],
+                               state.com_x, atol=1e-12)
+    # z = c - c_z / g * c'' in every sample (eq. 2.6)
+    h = s.com_z / s.gravity
+    np.testing.assert_allclose(samples[:, col["zmp_x"]],
+                               samples[:, col["com_x"]] - h * samples[:, col["com_ddx"]],
+                               atol=1e-12)
+    # the last sample continues into the next tick: one command period on, the state advanced
+    mpc.advance()
+    c, dc, ddc = samples[-1, [col["com_x"], col["com_dx"], col["com_ddx"]]]
+    assert mpc.state().com_x[0] == pytest.approx(c + dc * s.command_period, abs=2e-4)
+    # the support foot stands still in every sample
+    foot = "lf" if out["support_foot"][0] == 0 else "rf"
+    assert np.ptp(samples[:, col[foot + "_x"]]) == 0.0 and np.all(samples[:, col[foot + "_z"]] == 0)
+    assert out["double_support"].dtype == bool
+    with pytest.raises(ValueError, match="command_period"):
+        mpc.interpolate(command_period=0.03)
+    assert mpc.interpolate(command_period=0.01)["samples"].shape == (round(s.t / 0.01), 21)

@@ -27,16 +27,22 @@ from ._core import (  # noqa: F401 (re-exported)
     WalkingSettings,
     WalkingState,
     __version__,
+    trajectory_columns,
 )
+from ._core import EpisodeEnd, NmpcGoalSettings, PointGoalSettings  # noqa: F401
+from . import envs  # noqa: F401,E402 (the Gymnasium-shaped environments)
 
 __all__ = [
     "CircleObstacle",
     "CommandStatus",
     "DenseQp",
+    "EpisodeEnd",
     "Foot",
     "FootPose",
     "MpcResult",
     "MpcStatus",
+    "NmpcGoalSettings",
+    "PointGoalSettings",
     "QpResult",
     "QpSettings",
     "QpStatus",
@@ -44,4 +50,6 @@ __all__ = [
     "WalkingSettings",
     "WalkingState",
     "__version__",
+    "envs",
+    "trajectory_columns",
 ]

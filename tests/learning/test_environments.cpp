@@ -62,6 +62,31 @@ TEST(PointGoalEnv, RewardsAndEnds) {
   EXPECT_STREQ(r.message, "the step budget max_steps is spent");
 }
 
+// seed(s) restarts the task generator: the tasks that follow are those of a new environment
+// with seed s (whose constructor drew the first), whatever was drawn before.
+TEST(Environments, SeedRestartsTheTaskSequence) {
+  walkgen::PointGoalEnv fresh({}, 42), reseeded({}, 7);
+  reseeded.reset();
+  reseeded.seed(42);
+  for (int k = 0; k < 3; ++k) {
+    reseeded.reset();
+    EXPECT_EQ(fresh.goal(), reseeded.goal());
+    fresh.reset();
+  }
+  walkgen::NmpcGoalSettings s;
+  s.obstacles = 1;
+  walkgen::NmpcGoalEnv<16> a(s, 3), b(s, 4);
+  a.seed(11);
+  b.seed(11);
+  a.reset();
+  b.reset();
+  EXPECT_EQ(a.goal(), b.goal());
+  EXPECT_EQ(a.obstacles()[0].x, b.obstacles()[0].x);
+  b.seed(12);
+  b.reset();
+  EXPECT_NE(a.goal(), b.goal());
+}
+
 TEST(StepPool, RunsEveryIndexOnceAndRethrows) {
   walkgen::StepPool pool(2);
   std::vector<int> hits(101, 0);

@@ -108,6 +108,9 @@ class PointGoalEnv {
   int observation_size() const { return kObservationSize; }
   int action_size() const { return kActionSize; }
 
+  /// Restarts the goal generator from `seed` (the next reset() draws the seed's first goal).
+  void seed(std::uint64_t seed) { rng_.seed(seed); }
+
   /// Agent back to the origin, a new random goal.
   void reset() {
     Eigen::Vector2d g;

@@ -123,6 +123,9 @@ class NmpcGoalEnv {
   int observation_size() const { return 2 + 3 * s_.obstacles; }
   int action_size() const { return kActionSize; }
 
+  /// Restarts the task generator from `seed` (the next reset() draws the seed's first task).
+  void seed(std::uint64_t seed) { rng_.seed(seed); }
+
   /// Draws a task: a goal at a uniform bearing in [−π, π) and a distance uniform in
   /// [goal_min_distance, goal_max_distance], and the obstacles in its way.
   NmpcGoalTask sample_task() {

@@ -1,0 +1,300 @@
+"""Reinforcement-learning environments with the Gymnasium API shape (docs/python.md).
+
+- ``PointGoalEnv``: the benchmarking environment of thesis §11.2.1 (a point walks to a goal).
+- ``NmpcGoalEnv``: a policy steers the NMPC walking generator to a goal, around obstacles
+  (thesis §11.2.2; ``obstacles=k`` puts k in the way).
+- ``PointGoalVectorEnv`` and ``NmpcGoalVectorEnv``: N of them stepped at once in C++ threads.
+
+``reset(seed=None) -> (obs, info)`` and ``step(action) -> (obs, reward, terminated, truncated,
+info)``; ``observation_space`` and ``action_space`` are Box spaces (shape, dtype, low, high).
+When the ``gymnasium`` package is importable the environments subclass ``gymnasium.Env`` (and
+``gymnasium.vector.VectorEnv``) and the spaces are ``gymnasium.spaces.Box``; without it they
+behave the same with walkgen's own ``Box``.
+
+Seeding follows Gymnasium: ``reset(seed=s)`` restarts the task generator, ``reset()`` draws the
+next task; an environment made without a seed starts from a random one.
+"""
+
+import secrets
+
+import numpy as np
+
+from . import _core
+
+try:  # Gymnasium is optional: Debian 12 does not package it.
+    import gymnasium as _gymnasium
+    from gymnasium import spaces as _spaces
+except ImportError:  # pragma: no cover - depends on the machine
+    _gymnasium = None
+    _spaces = None
+
+
+class Box:
+    """A box in R^shape (what ``gymnasium.spaces.Box`` is, for machines without Gymnasium)."""
+
+    def __init__(self, low, high, shape=None, dtype=np.float32, seed=None):
+        self.dtype = np.dtype(dtype)
+        if shape is None:
+            shape = np.shape(low)
+        self.shape = tuple(int(k) for k in shape)
+        self.low = np.broadcast_to(np.asarray(low, dtype=self.dtype), self.shape).copy()
+        self.high = np.broadcast_to(np.asarray(high, dtype=self.dtype), self.shape).copy()
+        if np.any(self.low > self.high):
+            raise ValueError("Box: every low must be <= its high")
+        self._rng = np.random.default_rng(seed)
+
+    def seed(self, seed=None):
+        self._rng = np.random.default_rng(seed)
+        return [seed]
+
+    def sample(self):
+        """A uniform sample where both bounds are finite, normal where one is not."""
+        low = np.where(np.isfinite(self.low), self.low, -np.inf)
+        high = np.where(np.isfinite(self.high), self.high, np.inf)
+        bounded = np.isfinite(low) & np.isfinite(high)
+        x = self._rng.standard_normal(self.shape)
+        x = np.where(bounded, self._rng.uniform(np.where(bounded, low, 0),
+                                                np.where(bounded, high, 1)), x)
+        return np.clip(x, low, high).astype(self.dtype)
+
+    def contains(self, x):
+        x = np.asarray(x)
+        return (x.shape == self.shape and np.can_cast(x.dtype, self.dtype, "same_kind")
+                and bool(np.all(x >= self.low)) and bool(np.all(x <= self.high)))
+
+    __contains__ = contains
+
+    def __repr__(self):
+        return f"Box({self.low.min()}, {self.high.max()}, {self.shape}, {self.dtype})"
+
+
+def _box(low, high):
+    low = np.asarray(low, dtype=np.float32)
+    high = np.asarray(high, dtype=np.float32)
+    if _spaces is not None:
+        return _spaces.Box(low=low, high=high, dtype=np.float32)
+    return Box(low, high, dtype=np.float32)
+
+
+def _seed_or_random(seed):
+    if seed is None:
+        return secrets.randbits(63)
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise ValueError(f"seed: expected an int >= 0 or None, got {type(seed).__name__}")
+    if not 0 <= int(seed) < 2**64:
+        raise ValueError(f"seed: expected an int in [0, 2**64), got {seed}")
+    return int(seed)
+
+
+_EnvBase = _gymnasium.Env if _gymnasium is not None else object
+_VectorBase = _gymnasium.vector.VectorEnv if _gymnasium is not None else object
+
+
+class _Env(_EnvBase):
+    """What both single environments share; subclasses make ``self._core`` and the spaces."""
+
+    metadata = {"render_modes": []}
+    render_mode = None
+    spec = None
+
+    def reset(self, *, seed=None, options=None):
+        """A new task (reseeded when `seed` is given): ``(observation, info)``."""
+        if _gymnasium is not None:
+            super().reset(seed=seed)
+        if seed is not None:
+            self._core.seed(_seed_or_random(seed))
+        if options and "goal" in options:
+            self._reset_to(options)
+        else:
+            self._core.reset()
+        self._ended = False
+        return self._core.observe(), self._info()
+
+    def step(self, action):
+        """One step: ``(observation, reward, terminated, truncated, info)``. Actions are
+        clipped to [-1, 1]; non-finite entries count as 0."""
+        if self._ended:
+            raise RuntimeError(f"{type(self).__name__}.step: the episode has ended; "
+                               "call reset() first")
+        reward, end, message = self._core.step(action)
+        self._ended = end != "none"
+        info = self._info()
+        info.update(end=str(end), message=message, is_success=end == "success")
+        return (self._core.observe(), float(reward), end in ("success", "failure"),
+                end == "truncated", info)
+
+    def close(self):
+        pass
+
+    @property
+    def settings(self):
+        """A copy of the environment's settings."""
+        return self._core.settings
+
+    def _info(self):
+        return {}
+
+
+class PointGoalEnv(_Env):
+    """Thesis §11.2.1: the agent starts at the origin and moves by ``action * step_size`` towards
+    a random goal. Observation (agent x, y, goal x, y), float32; action (dx, dy) in [-1, 1]^2.
+    Reward: progress towards the goal, +win_reward within win_radius (terminated), lose_reward
+    beyond lose_radius (terminated); max_steps truncates when > 0.
+
+    ``reset(options={"goal": (x, y)})`` starts an episode with that goal."""
+
+    def __init__(self, settings=None, seed=None, **fields):
+        self._settings = _settings(_core.PointGoalSettings, settings, fields)
+        self._core = _core._PointGoalCore(self._settings, 0)
+        self._core.seed(_seed_or_random(seed))  # the first reset() draws the seed's first task
+        s = self._settings
+        reach = s.goal_range + s.lose_radius + 2 * s.step_size  # the last step may overshoot
+        self.observation_space = _box([-reach] * 2 + [-s.goal_range] * 2,
+                                      [reach] * 2 + [s.goal_range] * 2)
+        self.action_space = _box([-1.0, -1.0], [1.0, 1.0])
+        self._ended = True
+
+    def _reset_to(self, options):
+        self._core.reset_to(options["goal"])
+
+    def _info(self):
+        return {"agent": self._core.agent, "goal": self._core.goal}
+
+
+class NmpcGoalEnv(_Env):
+    """Thesis §11.2.2: a policy steers ``WalkingMpc`` to a goal by (v_x, w_z) commands.
+    Observation: the goal in the robot frame (x, y), then per obstacle its centre in the robot
+    frame and radius + margin; float32. Action (v_x, w_z) in [-1, 1]^2, scaled to the preset's
+    limits. Terminated on success (the CoM within success_radius) or failure (the NMPC found no
+    plan); truncated after max_steps.
+
+    ``NmpcGoalEnv(obstacles=2)`` sets fields of ``NmpcGoalSettings`` by keyword;
+    ``reset(options={"goal": (x, y), "obstacles": [CircleObstacle, ...]})`` sets the task."""
+
+    def __init__(self, settings=None, seed=None, **fields):
+        self._settings = _settings(_core.NmpcGoalSettings, settings, fields)
+        self._core = _core._NmpcGoalCore(self._settings, 0)
+        self._core.seed(_seed_or_random(seed))  # the first reset() draws the seed's first task
+        self.observation_space, self.action_space = _nmpc_spaces(self._settings)
+        self._ended = True
+
+    @property
+    def mpc(self):
+        """The environment's WalkingMpc (to read its plan; stepping it is the environment's)."""
+        return self._core.mpc
+
+    def command_of(self, action):
+        """The velocity command (vx, vy, wz) an action maps to."""
+        return self._core.command_of(action)
+
+    def _reset_to(self, options):
+        self._core.reset_to(options["goal"], list(options.get("obstacles", [])))
+
+    def _info(self):
+        c = self._core
+        return {"position": c.position, "heading": c.heading, "distance": c.distance,
+                "goal": c.goal, "time": c.time,
+                "min_obstacle_clearance": c.min_obstacle_clearance}
+
+
+def _settings(kind, settings, fields):
+    """A copy of `settings` (default: kind()) with `fields` set, checked."""
+    if settings is None:
+        s = kind()
+    elif isinstance(settings, kind):
+        s = settings.copy()
+    else:
+        raise ValueError(f"settings: expected {kind.__name__} or None, "
+                         f"got {type(settings).__name__}")
+    for name, value in fields.items():
+        if name.startswith("_") or not hasattr(s, name) or callable(getattr(s, name)):
+            known = sorted(k for k in dir(kind) if not k.startswith("_")
+                           and not callable(getattr(kind, k)))
+            raise ValueError(f"{kind.__name__} has no field '{name}'; fields: {', '.join(known)}")
+        setattr(s, name, value)
+    s.validate()
+    return s
+
+
+def _nmpc_spaces(s):
+    inf = np.inf
+    low = [-inf, -inf] + [-inf, -inf, 0.0] * s.obstacles
+    high = [inf] * (2 + 3 * s.obstacles)
+    return _box(low, high), _box([-1.0, -1.0], [1.0, 1.0])
+
+
+class _VectorEnv(_VectorBase):
+    """N environments stepped in C++ threads (the GIL released). Same-step auto-reset: when an
+    environment's episode ends its returned observation is the first of the next episode, and
+    ``info["final_observation"][i]`` (with ``info["_final_observation"][i]`` True) holds the
+    last one of the episode that ended."""
+
+    metadata = {"render_modes": [], "autoreset_mode": "SameStep"}
+    render_mode = None
+    spec = None
+
+    def _init_spaces(self, single_obs, single_act):
+        n = self.num_envs
+        self.single_observation_space = single_obs
+        self.single_action_space = single_act
+        self.observation_space = _box(np.tile(single_obs.low, (n, 1)),
+                                      np.tile(single_obs.high, (n, 1)))
+        self.action_space = _box(np.tile(single_act.low, (n, 1)), np.tile(single_act.high, (n, 1)))
+
+    @property
+    def num_envs(self):
+        return self._core.num_envs
+
+    @property
+    def threads(self):
+        """Threads that step the environments."""
+        return self._core.threads
+
+    def env(self, index):
+        """Environment `index` (its position, goal, obstacles, mpc, ...), to read; stepping it
+        is the vector's."""
+        return self._core.env(index)
+
+    def reset(self, *, seed=None, options=None):
+        """Resets every environment (environment i reseeded with seed + i): ``(obs, info)``."""
+        if options:
+            raise ValueError("VectorEnv.reset: options are not supported")
+        obs = self._core.reset(None if seed is None else _seed_or_random(seed))
+        self._reset_done = True
+        return obs, {}
+
+    def step(self, actions):
+        """Steps all: ``(obs (N, o), rewards (N,), terminated (N,), truncated (N,), info)``."""
+        if not getattr(self, "_reset_done", False):
+            raise RuntimeError(f"{type(self).__name__}.step: call reset() first")
+        obs, rewards, ends, messages, final_obs = self._core.step(actions)
+        names = np.array([str(e) for e in ends])
+        terminated = (names == "success") | (names == "failure")
+        truncated = names == "truncated"
+        done = terminated | truncated
+        info = {"end": names, "message": np.array(messages, dtype=object),
+                "is_success": names == "success",
+                "final_observation": final_obs, "_final_observation": done}
+        return obs, rewards, terminated, truncated, info
+
+    def close(self, **kwargs):
+        pass
+
+
+class PointGoalVectorEnv(_VectorEnv):
+    """``num_envs`` PointGoalEnv stepped in C++ threads (``threads=0``: one per core)."""
+
+    def __init__(self, num_envs, settings=None, seed=None, threads=0, **fields):
+        s = _settings(_core.PointGoalSettings, settings, fields)
+        self._core = _core._PointGoalVectorCore(s, num_envs, _seed_or_random(seed), threads)
+        single = PointGoalEnv(s, seed=0)
+        self._init_spaces(single.observation_space, single.action_space)
+
+
+class NmpcGoalVectorEnv(_VectorEnv):
+    """``num_envs`` NmpcGoalEnv stepped in C++ threads (``threads=0``: one per core)."""
+
+    def __init__(self, num_envs, settings=None, seed=None, threads=0, **fields):
+        s = _settings(_core.NmpcGoalSettings, settings, fields)
+        self._core = _core._NmpcGoalVectorCore(s, num_envs, _seed_or_random(seed), threads)
+        self._init_spaces(*_nmpc_spaces(s))
