@@ -14,6 +14,7 @@ void bind_qp(py::module_& m);
 void bind_settings(py::module_& m);
 void bind_mpc(py::module_& m);
 void bind_envs(py::module_& m);
+void bind_kinematics(py::module_& m);
 
 /// Makes a bound enum print as its name ("solved"), as walkgen's to_string() does, and compare
 /// equal to that name, so `result.status == "solved"` reads as it should. The methods replace

@@ -14,4 +14,5 @@ PYBIND11_MODULE(_core, m) {
   walkgen::python::bind_settings(m);
   walkgen::python::bind_mpc(m);
   walkgen::python::bind_envs(m);
+  walkgen::python::bind_kinematics(m);
 }
