@@ -14,6 +14,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "kinematics.hpp"
 #include "walkgen/kinematics/kinematic_tree.hpp"
 #include "walkgen/robot/robot_description.hpp"
 #include "walkgen/yaml/robot_description_loader.hpp"
@@ -94,11 +95,6 @@ class Kinematics {
   Tree::Workspace ws_;
 };
 
-/// A KinematicTree shared with the Kinematics made from it.
-struct PyTree {
-  std::shared_ptr<const Tree> tree;
-};
-
 PyTree make_tree(KinematicTree<double> tree) {
   return PyTree{std::make_shared<const Tree>(std::move(tree))};
 }
@@ -137,6 +133,11 @@ void bind_kinematics(py::module_& m) {
   features["mujoco"] = true;
 #else
   features["mujoco"] = false;
+#endif
+#ifdef WALKGEN_PYTHON_HAVE_CERES
+  features["ik"] = true;
+#else
+  features["ik"] = false;
 #endif
   m.attr("features") = features;
 

@@ -15,4 +15,7 @@ PYBIND11_MODULE(_core, m) {
   walkgen::python::bind_mpc(m);
   walkgen::python::bind_envs(m);
   walkgen::python::bind_kinematics(m);
+#ifdef WALKGEN_PYTHON_HAVE_CERES
+  walkgen::python::bind_ik(m);
+#endif
 }

@@ -195,3 +195,82 @@ def test_kinematics_errors_are_value_errors_naming_what_is_wrong(humanoid, tmp_p
         k.position(99)
     with pytest.raises(ValueError, match="l_knee"):
         tree.joint_index("knee")
+
+
+needs_ik = pytest.mark.skipif(not walkgen.features.get("ik"), reason="built without Ceres IK")
+
+
+def check_solution(tree, robot, ik, com, left, right, yaws=(0.0, 0.0), tol=1e-6):
+    k = tree.forward_kinematics(ik.q, ik.base_position, ik.base_rotation)
+    np.testing.assert_allclose(k.center_of_mass(), com, atol=tol)
+    for sole, target, yaw in zip(robot.sole_frames, (left, right), yaws):
+        np.testing.assert_allclose(k.position(sole), target, atol=tol)
+        R = k.rotation(sole)
+        np.testing.assert_allclose(R[:, 2], [0, 0, 1], atol=tol)  # flat
+        assert math.atan2(R[1, 0], R[0, 0]) == pytest.approx(yaw, abs=tol)
+    assert np.all(ik.q >= tree.lower_limits - 1e-12) and np.all(ik.q <= tree.upper_limits + 1e-12)
+
+
+@needs_ik
+@pytest.mark.parametrize("name", ["walkgen_humanoid", "unitree_g1"])
+def test_ik_reaches_a_shifted_com_with_the_feet_kept(name):
+    robot = walkgen.RobotDescription.find(name)
+    tree = walkgen.KinematicTree.from_description(robot)
+    ik = walkgen.InverseKinematics(tree, robot)  # starts standing, left sole at the origin
+    k = tree.forward_kinematics(ik.q, ik.base_position, ik.base_rotation)
+    left, right = (k.position(s) for s in robot.sole_frames)
+    np.testing.assert_allclose(left, 0.0, atol=1e-12)
+    com = k.center_of_mass() + [0.02, 0.01, -0.01]
+    result = ik.solve(com, left, right)
+    assert result.ok and result.status == "converged" and result.applied, result.message
+    assert result.com_error < 1e-6 and result.foot_position_error < 1e-6
+    check_solution(tree, robot, ik, com, left, right)
+
+
+@needs_ik
+def test_ik_follows_the_generators_interpolated_walk():
+    robot = walkgen.RobotDescription.find("walkgen_humanoid")
+    tree = walkgen.KinematicTree.from_description(robot)
+    settings = robot.walking
+    mpc = walkgen.WalkingMpc(settings)
+    mpc.set_command(settings.max_command[0] * 0.9)
+    col = {n: i for i, n in enumerate(walkgen.trajectory_columns)}
+    ik = None
+    for tick in range(40):  # 40 ticks of t: the first steps (Heicub's preset: 3.2 s steps)
+        assert mpc.solve().ok
+        for sample in mpc.interpolate(command_period=settings.t / 4)["samples"]:
+            com = sample[[col["com_x"], col["com_y"], col["com_z"]]]
+            left = sample[[col["lf_x"], col["lf_y"], col["lf_z"]]]
+            right = sample[[col["rf_x"], col["rf_y"], col["rf_z"]]]
+            if ik is None:
+                ik = walkgen.InverseKinematics(tree, robot)
+                ik.stand(left_sole=left, yaw=sample[col["lf_q"]])
+            yaw = 0.5 * (sample[col["lf_q"]] + sample[col["rf_q"]])
+            r = ik.solve(com, left, right, sample[col["lf_q"]], sample[col["rf_q"]], yaw=yaw)
+            assert r.ok, (tick, r.message)
+            check_solution(tree, robot, ik, com, left, right,
+                           yaws=(sample[col["lf_q"]], sample[col["rf_q"]]))
+        mpc.advance()
+    assert mpc.state().step_count >= 3  # 16 s: the swing feet left the ground and landed
+
+
+@needs_ik
+def test_ik_reports_unreachable_targets_and_keeps_its_solution():
+    robot = walkgen.RobotDescription.find("walkgen_humanoid")
+    tree = walkgen.KinematicTree.from_description(robot)
+    ik = walkgen.InverseKinematics(tree, robot)
+    k = tree.forward_kinematics(ik.q, ik.base_position, ik.base_rotation)
+    left, right = (k.position(s) for s in robot.sole_frames)
+    q_before = ik.q.copy()
+    result = ik.solve(k.center_of_mass() + [0, 0, 1.0], left, right)  # CoM 1 m higher
+    assert result.status == "not_converged" and not result.ok and not result.applied
+    assert result.com_error > 0.1 and "kept" in result.message
+    np.testing.assert_array_equal(ik.q, q_before)
+    with pytest.raises(ValueError, match="finite"):
+        ik.solve([np.nan, 0, 0.4], left, right)
+    with pytest.raises(ValueError, match=r"left_foot.*\(3,\)"):
+        ik.solve(k.center_of_mass(), left[:2], right)
+    with pytest.raises(ValueError, match="robot"):
+        walkgen.InverseKinematics(tree).stand()
+    with pytest.raises(ValueError, match="q"):
+        ik.set_initial_guess([0, 0, 0.5], np.eye(3), np.zeros(3))
