@@ -139,6 +139,11 @@ void bind_kinematics(py::module_& m) {
 #else
   features["ik"] = false;
 #endif
+#ifdef WALKGEN_PYTHON_HAVE_SIMULATION
+  features["simulation"] = true;
+#else
+  features["simulation"] = false;
+#endif
   m.attr("features") = features;
 
   py::class_<RobotDescription>(m, "RobotDescription",

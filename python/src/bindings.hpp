@@ -15,7 +15,8 @@ void bind_settings(py::module_& m);
 void bind_mpc(py::module_& m);
 void bind_envs(py::module_& m);
 void bind_kinematics(py::module_& m);
-void bind_ik(py::module_& m);  // with WALKGEN_PYTHON_HAVE_CERES
+void bind_ik(py::module_& m);          // with WALKGEN_PYTHON_HAVE_CERES
+void bind_simulation(py::module_& m);  // with WALKGEN_PYTHON_HAVE_SIMULATION
 
 /// Makes a bound enum print as its name ("solved"), as walkgen's to_string() does, and compare
 /// equal to that name, so `result.status == "solved"` reads as it should. The methods replace

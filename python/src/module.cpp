@@ -18,4 +18,7 @@ PYBIND11_MODULE(_core, m) {
 #ifdef WALKGEN_PYTHON_HAVE_CERES
   walkgen::python::bind_ik(m);
 #endif
+#ifdef WALKGEN_PYTHON_HAVE_SIMULATION
+  walkgen::python::bind_simulation(m);
+#endif
 }

@@ -36,6 +36,8 @@ from ._core import (  # noqa: F401 (re-exported)
 from ._core import EpisodeEnd, NmpcGoalSettings, PointGoalSettings  # noqa: F401
 if features.get("ik"):  # built with Ceres
     from ._core import IkResult, IkStatus, InverseKinematics  # noqa: F401
+if features.get("simulation"):  # built with MuJoCo and Ceres
+    from ._core import LoopMode, LoopStatus, LoopTick, Simulation, StopReason  # noqa: F401
 from . import envs  # noqa: F401,E402 (the Gymnasium-shaped environments)
 
 __all__ = [
