@@ -144,6 +144,11 @@ void bind_kinematics(py::module_& m) {
 #else
   features["simulation"] = false;
 #endif
+#ifdef WALKGEN_PYTHON_HAVE_NAVIGATION
+  features["navigation"] = true;
+#else
+  features["navigation"] = false;
+#endif
   m.attr("features") = features;
 
   py::class_<RobotDescription>(m, "RobotDescription",

@@ -17,6 +17,7 @@ void bind_envs(py::module_& m);
 void bind_kinematics(py::module_& m);
 void bind_ik(py::module_& m);          // with WALKGEN_PYTHON_HAVE_CERES
 void bind_simulation(py::module_& m);  // with WALKGEN_PYTHON_HAVE_SIMULATION
+void bind_navigation(py::module_& m);  // with WALKGEN_PYTHON_HAVE_NAVIGATION
 
 /// Makes a bound enum print as its name ("solved"), as walkgen's to_string() does, and compare
 /// equal to that name, so `result.status == "solved"` reads as it should. The methods replace

@@ -21,4 +21,7 @@ PYBIND11_MODULE(_core, m) {
 #ifdef WALKGEN_PYTHON_HAVE_SIMULATION
   walkgen::python::bind_simulation(m);
 #endif
+#ifdef WALKGEN_PYTHON_HAVE_NAVIGATION
+  walkgen::python::bind_navigation(m);
+#endif
 }

@@ -68,12 +68,44 @@ class Box:
         return f"Box({self.low.min()}, {self.high.max()}, {self.shape}, {self.dtype})"
 
 
+class Dict:
+    """A dictionary of spaces (what ``gymnasium.spaces.Dict`` is, without Gymnasium)."""
+
+    def __init__(self, spaces):
+        self.spaces = dict(spaces)
+
+    def __getitem__(self, key):
+        return self.spaces[key]
+
+    def sample(self):
+        return {k: s.sample() for k, s in self.spaces.items()}
+
+    def contains(self, x):
+        return (isinstance(x, dict) and x.keys() == self.spaces.keys()
+                and all(s.contains(x[k]) for k, s in self.spaces.items()))
+
+    __contains__ = contains
+
+    def __repr__(self):
+        return f"Dict({self.spaces!r})"
+
+
 def _box(low, high):
     low = np.asarray(low, dtype=np.float32)
     high = np.asarray(high, dtype=np.float32)
     if _spaces is not None:
         return _spaces.Box(low=low, high=high, dtype=np.float32)
     return Box(low, high, dtype=np.float32)
+
+
+def _image_space(shape, low, high, dtype):
+    if _spaces is not None:
+        return _spaces.Box(low=low, high=high, shape=shape, dtype=dtype)
+    return Box(low, high, shape=shape, dtype=dtype)
+
+
+def _dict_space(spaces):
+    return _spaces.Dict(spaces) if _spaces is not None else Dict(spaces)
 
 
 def _seed_or_random(seed):
@@ -221,6 +253,117 @@ def _nmpc_spaces(s):
     low = [-inf, -inf] + [-inf, -inf, 0.0] * s.obstacles
     high = [inf] * (2 + 3 * s.obstacles)
     return _box(low, high), _box([-1.0, -1.0], [1.0, 1.0])
+
+
+NAVIGATION_TASKS = ("straight", "curved", "obstacle", "scan", "dynamic", "distractor")
+
+
+class NavigationEnv(_EnvBase):
+    """Thesis §11.1: walkgen's humanoid in MuJoCo walks to a red target in a room, seeing through
+    its chest cameras (the closed loop of figure 6.1 under it). One step is one NMPC tick (0.4 s).
+
+    Observation (a dict): ``rgb`` (h, w, 3) uint8 of the left camera, ``disparity`` (h, w)
+    float32 [px] of the stereo pair (WLS, <= 0 where unknown), ``depth`` (h, w) float32 [m], the
+    renderer's exact depth. Action: the velocity command (v_x, v_y, w_z) [m/s, rad/s], clipped
+    to 95 % of Heicub's limits (the action space's bounds). Reward: the progress of the true
+    CoM towards the target [m], +10 on reaching it (terminated), -10 on a collision, a fall or a
+    fault (terminated); the time limit truncates. ``expert_action()`` is the scripted expert's
+    command for the current observation (for behavioural cloning).
+
+    ``task`` is one of NAVIGATION_TASKS or a list to draw from; each reset draws a scene seed
+    from the environment's generator (``reset(seed=s)`` restarts it); ``reset(options={"task":
+    "obstacle", "scene_seed": 3})`` picks a scene. Needs walkgen.features["navigation"] and EGL
+    rendering (RuntimeError when unavailable)."""
+
+    metadata = {"render_modes": []}
+    render_mode = None
+    spec = None
+
+    def __init__(self, task="straight", seed=None, time_limit=0.0, reach_distance=0.3):
+        if not hasattr(_core, "_NavigationCore"):
+            raise RuntimeError("NavigationEnv: walkgen was built without walkgen::navigation "
+                               "(MuJoCo, Ceres, OpenCV); see walkgen.features")
+        tasks = [task] if isinstance(task, str) else list(task)
+        for t in tasks:
+            if t not in NAVIGATION_TASKS:
+                raise ValueError(f"NavigationEnv: task: expected one of {', '.join(NAVIGATION_TASKS)}, "
+                                 f"got '{t}'")
+        self._tasks = tasks
+        self._core = _core._NavigationCore(float(time_limit), float(reach_distance))
+        self._rng = np.random.default_rng(_seed_or_random(seed))
+        limit = self._core.max_command.astype(np.float32)
+        self.action_space = _box(-limit, limit)
+        h, w = 240, 320  # the chest cameras (models/walkgen_humanoid.xml); checked on reset
+        self._set_observation_space(h, w)
+        self._ended = True
+
+    def _set_observation_space(self, h, w):
+        self.observation_space = _dict_space({
+            "rgb": _image_space((h, w, 3), 0, 255, np.uint8),
+            "disparity": _image_space((h, w), -np.inf, np.inf, np.float32),
+            "depth": _image_space((h, w), 0.0, np.inf, np.float32)})
+
+    def reset(self, *, seed=None, options=None):
+        if _gymnasium is not None:
+            super().reset(seed=seed)
+        if seed is not None:
+            self._rng = np.random.default_rng(_seed_or_random(seed))
+        options = dict(options or {})
+        task = options.pop("task", None) or self._tasks[int(self._rng.integers(len(self._tasks)))]
+        scene_seed = options.pop("scene_seed", None)
+        if scene_seed is None:
+            scene_seed = int(self._rng.integers(2**32))
+        if options:
+            raise ValueError(f"NavigationEnv.reset: unknown options {sorted(options)}; "
+                             "known: task, scene_seed")
+        if task not in NAVIGATION_TASKS:
+            raise ValueError(f"NavigationEnv.reset: task: expected one of "
+                             f"{', '.join(NAVIGATION_TASKS)}, got '{task}'")
+        if self._core.reset(task, scene_seed):  # did not start: a fall or no rendering
+            status, message = self._core.status, self._core.message
+            raise RuntimeError(f"NavigationEnv.reset: the episode could not start: {status} "
+                               f"({message})")
+        h, w = self._core.image_size
+        if self.observation_space["rgb"].shape[:2] != (h, w):
+            self._set_observation_space(h, w)
+        self._ended = False
+        obs = self._core.observe()
+        self._distance = float(np.linalg.norm(self._core.true_com() - self._core.scene["target"]))
+        return obs, self._info()
+
+    def expert_action(self):
+        """The scripted expert's command (v_x, v_y, w_z) for the current observation."""
+        return self._core.expert_command().astype(np.float32)
+
+    def step(self, action):
+        if self._ended:
+            raise RuntimeError("NavigationEnv.step: the episode has ended; call reset() first")
+        done = self._core.step(action)
+        distance = self._core.distance
+        reward = self._distance - distance
+        self._distance = distance
+        status = self._core.status if done else "running"
+        terminated = done and status != "timed_out"
+        truncated = done and status == "timed_out"
+        if status == "reached":
+            reward += 10.0
+        elif terminated:
+            reward -= 10.0
+        self._ended = done
+        obs = self._core.observe()  # after the end too: the robot where the episode left it
+        info = self._info()
+        info.update(status=status, message=self._core.message if done else "",
+                    is_success=status == "reached")
+        return obs, float(reward), terminated, truncated, info
+
+    def _info(self):
+        scene = self._core.scene
+        return {"task": scene["task"], "scene_seed": scene["seed"], "target": scene["target"],
+                "distance": self._distance, "time": self._core.time,
+                "time_limit": self._core.time_limit}
+
+    def close(self):
+        pass
 
 
 class _VectorEnv(_VectorBase):

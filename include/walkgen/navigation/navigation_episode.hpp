@@ -16,9 +16,11 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "walkgen/core/assert.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
 #include "walkgen/opencv/demonstration_recorder.hpp"
 #include "walkgen/opencv/stereo_depth.hpp"
@@ -168,117 +170,188 @@ inline StereoDepth make_stereo_depth(const StereoImages& images) {
   return StereoDepth(settings, ideal_disparity_to_depth(k, baseline));
 }
 
+/// One navigation episode, a tick at a time: the robot of run_navigation_episode() in `scene`,
+/// observed (observe(): the person moved, both cameras rendered, the stereo disparity computed)
+/// and commanded (step(): the command clamped, recorded, walked for one NMPC tick, the end
+/// checked). run_navigation_episode() drives it with a policy; the Python environment
+/// walkgen.envs.NavigationEnv with actions. Not copyable or movable (the loop borrows the robot
+/// and the IK).
+class NavigationEpisode {
+ public:
+  /// Builds the robot in `scene` and starts the walk; done() when that or the first render
+  /// failed (result() says why). Heicub's settings with the scene's chairs and person as NMPC
+  /// obstacles (margin 0.12 m; the person's circle moves every tick).
+  /// @throws walkgen::invalid_argument for invalid options (validate()) or when the humanoid's
+  ///   model cannot be loaded.
+  explicit NavigationEpisode(const NavigationScene& scene, NavigationOptions options = {})
+      : scene_(scene), options_((validate(options), std::move(options))) {
+    static const KinematicTree<double> tree = humanoid_tree();
+    const RobotDescription humanoid = walkgen_humanoid_description();
+    MujocoRobotSettings robot_settings = mujoco_robot_settings(humanoid);
+    robot_settings.objects = scene_.objects();
+    robot_ = std::make_unique<MujocoRobot>(robot_settings);
+    ik_ = std::make_unique<HumanoidIk>(tree);
+    settings_ = humanoid.walking;
+    settings_.obstacles = scene_.obstacles_at(0.0, 0.12);  // capacity for chairs and the person
+    loop_ = std::make_unique<SimLoop>(settings_, *robot_, *ik_);
+    forbidden_ = detail::obstacle_geoms(*robot_);
+
+    const LoopTick& started = loop_->start();
+    if (started.status != LoopStatus::ok) {
+      detail::set_stopped(result_, started);
+      done_ = true;
+      return;
+    }
+    t0_ = robot_->output().time;
+    limit_ = options_.time_limit > 0.0 ? options_.time_limit : navigation_time_limit(scene_);
+    const StereoImages& first = robot_->render_cameras();
+    if (first.status != RenderStatus::ok) {
+      result_.status = NavigationStatus::render_unavailable;
+      result_.message = first.message;
+      done_ = true;
+      return;
+    }
+    stereo_ = std::make_unique<StereoDepth>(make_stereo_depth(first));
+  }
+  NavigationEpisode(const NavigationEpisode&) = delete;
+  NavigationEpisode& operator=(const NavigationEpisode&) = delete;
+
+  /// The episode has ended (result().status says how).
+  bool done() const { return done_; }
+  const NavigationResult& result() const { return result_; }
+
+  /// Whether observe() may be called: the walk started and the cameras rendered (also after
+  /// the episode ended, to see where it ended).
+  bool can_observe() const { return stereo_ != nullptr; }
+
+  /// What the robot sees now: the person moved to where it is, both cameras rendered, the WLS
+  /// disparity of the pair. Valid until the next observe(). Needs can_observe().
+  const NavigationObservation& observe() {
+    WALKGEN_ASSERT(can_observe());
+    const double t = robot_->output().time - t0_;
+    if (scene_.has_person) {
+      const Eigen::Vector2d p = scene_.person.position(t);
+      robot_->set_object_position("person", {p.x(), p.y(), 0.0});
+      loop_->mpc().set_obstacles(scene_.obstacles_at(t, 0.12));
+    }
+    const StereoImages& images = robot_->render_cameras();
+    const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
+                       const_cast<std::uint8_t*>(images.left.rgb.data()));
+    const cv::Mat right(images.right.height, images.right.width, CV_8UC3,
+                        const_cast<std::uint8_t*>(images.right.rgb.data()));
+    const StereoDepthFrame& frame = stereo_->compute(left, right);
+    obs_ = NavigationObservation{};
+    obs_.time = t;
+    obs_.images = &images;
+    obs_.disparity = &frame.disparity;
+    obs_.pose = walking_pose(loop_->mpc().state());
+    obs_.scene = &scene_;
+    observed_ = true;
+    return obs_;
+  }
+
+  /// Walks one NMPC tick with `command` (clipped to 95 % of the settings' max_command), after
+  /// observe() (called here when it was not since the last step). Records the tick when the
+  /// options have a recorder, then checks how the episode stands.
+  /// @returns done()
+  bool step(Eigen::Vector3d command) {
+    WALKGEN_ASSERT(!done_);
+    if (!observed_) observe();
+    observed_ = false;
+    command =
+        command.cwiseMax(-0.95 * settings_.max_command).cwiseMin(0.95 * settings_.max_command);
+    if (options_.recorder != nullptr) {
+      const Eigen::Vector3d label = options_.label ? options_.label(obs_) : command;
+      options_.recorder->record(obs_.time, obs_.images->left, *obs_.disparity, label);
+    }
+    result_.commands.push_back(command);
+    result_.rejected_commands += loop_->set_command(command) != CommandStatus::accepted;
+    const LoopTick& tick = loop_->tick();
+    result_.qp_failures += tick.mpc != MpcStatus::solved;
+    for (const auto& s : loop_->samples()) {
+      if (s.zmp.valid) {
+        result_.zmp_distance.push_back(
+            std::hypot(s.zmp.zmp_W.x() - s.plan.zmp_x, s.zmp.zmp_W.y() - s.plan.zmp_y));
+      }
+    }
+    if (options_.on_tick) options_.on_tick(*robot_, obs_.time);
+    result_.time = robot_->output().time - t0_;
+    result_.final_distance = (true_com(*robot_) - scene_.target).norm();
+    done_ = check_end(tick);
+    return done_;
+  }
+
+  MujocoRobot& robot() { return *robot_; }
+  const SimLoop& loop() const { return *loop_; }
+  const NavigationScene& scene() const { return scene_; }
+  /// The simulated time the episode may take [s].
+  double time_limit() const { return limit_; }
+  /// The clip of step()'s commands: 95 % of the walking settings' max_command.
+  Eigen::Vector3d max_command() const { return 0.95 * settings_.max_command; }
+
+ private:
+  /// A stop (stopping: the step is finished, the CoM moves between the feet) is ticked through;
+  /// a walk stopped for QP failures starts again, any other fault or stop ends the episode.
+  bool check_end(const LoopTick& tick) {
+    const bool replan = tick.mode == LoopMode::stopped && tick.reason == StopReason::qp_failures &&
+                        result_.restarts < options_.max_restarts;
+    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged ||
+        tick.mode == LoopMode::fault || (tick.mode == LoopMode::stopped && !replan)) {
+      detail::set_stopped(result_, tick);
+      return true;
+    }
+    if (replan) {
+      ++result_.restarts;
+      const LoopTick& restarted = loop_->start();
+      if (restarted.status != LoopStatus::ok) {
+        detail::set_stopped(result_, restarted);
+        return true;
+      }
+    }
+    if (detail::touches_any(robot_->data(), forbidden_)) {
+      result_.status = NavigationStatus::collided;
+      result_.collided = true;
+      result_.message = "touched an obstacle at t = " + std::to_string(result_.time) + " s";
+      return true;
+    }
+    if (result_.final_distance <= options_.reach_distance) {
+      result_.status = NavigationStatus::reached;
+      result_.reached = true;
+      return true;
+    }
+    if (result_.time >= limit_) {
+      result_.status = NavigationStatus::timed_out;
+      result_.message = "time limit " + std::to_string(limit_) + " s";
+      return true;
+    }
+    return false;
+  }
+
+  NavigationScene scene_;
+  NavigationOptions options_;
+  WalkingSettings<double> settings_;
+  std::unique_ptr<MujocoRobot> robot_;
+  std::unique_ptr<HumanoidIk> ik_;
+  std::unique_ptr<SimLoop> loop_;
+  std::unique_ptr<StereoDepth> stereo_;
+  std::vector<int> forbidden_;
+  NavigationResult result_;
+  NavigationObservation obs_;
+  double t0_ = 0.0, limit_ = 0.0;
+  bool done_ = false, observed_ = false;
+};
+
 /// Runs `policy` in `scene` until the robot reaches the target, collides, falls, or the time
-/// limit passes. Heicub's settings with the scene's chairs and person as NMPC obstacles
-/// (margin 0.12 m; the person's circle moves every tick). Numerical outcomes (QP failures, a
-/// fall, a failed render) are in the result, never thrown.
+/// limit passes (a NavigationEpisode, observed and stepped once per NMPC tick). Numerical
+/// outcomes (QP failures, a fall, a failed render) are in the result, never thrown.
 /// @throws walkgen::invalid_argument for invalid options (validate()) or when the humanoid's
 ///   model cannot be loaded.
 inline NavigationResult run_navigation_episode(const NavigationScene& scene,
                                                const NavigationPolicy& policy,
                                                const NavigationOptions& options = {}) {
-  validate(options);
-  NavigationResult result;
-  static const KinematicTree<double> tree = humanoid_tree();
-  const RobotDescription humanoid = walkgen_humanoid_description();
-  MujocoRobotSettings robot_settings = mujoco_robot_settings(humanoid);
-  robot_settings.objects = scene.objects();
-  MujocoRobot robot(robot_settings);
-  HumanoidIk ik(tree);
-  WalkingSettings<double> settings = humanoid.walking;
-  settings.obstacles = scene.obstacles_at(0.0, 0.12);  // capacity for chairs and the person
-  SimLoop loop(settings, robot, ik);
-  const std::vector<int> forbidden = detail::obstacle_geoms(robot);
-
-  const LoopTick& started = loop.start();
-  if (started.status != LoopStatus::ok) {
-    detail::set_stopped(result, started);
-    return result;
-  }
-  const double t0 = robot.output().time;
-  const double limit = options.time_limit > 0.0 ? options.time_limit : navigation_time_limit(scene);
-
-  const StereoImages& first = robot.render_cameras();
-  if (first.status != RenderStatus::ok) {
-    result.status = NavigationStatus::render_unavailable;
-    result.message = first.message;
-    return result;
-  }
-  StereoDepth stereo = make_stereo_depth(first);
-
-  while (true) {
-    const double t = robot.output().time - t0;
-    if (scene.has_person) {
-      const Eigen::Vector2d p = scene.person.position(t);
-      robot.set_object_position("person", {p.x(), p.y(), 0.0});
-      loop.mpc().set_obstacles(scene.obstacles_at(t, 0.12));
-    }
-    const StereoImages& images = robot.render_cameras();
-    const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
-                       const_cast<std::uint8_t*>(images.left.rgb.data()));
-    const cv::Mat right(images.right.height, images.right.width, CV_8UC3,
-                        const_cast<std::uint8_t*>(images.right.rgb.data()));
-    const StereoDepthFrame& frame = stereo.compute(left, right);
-    NavigationObservation obs;
-    obs.time = t;
-    obs.images = &images;
-    obs.disparity = &frame.disparity;
-    obs.pose = walking_pose(loop.mpc().state());
-    obs.scene = &scene;
-    Eigen::Vector3d command = policy(obs);
-    command = command.cwiseMax(-0.95 * settings.max_command).cwiseMin(0.95 * settings.max_command);
-    if (options.recorder != nullptr) {
-      const Eigen::Vector3d label = options.label ? options.label(obs) : command;
-      options.recorder->record(t, images.left, frame.disparity, label);
-    }
-    result.commands.push_back(command);
-    result.rejected_commands += loop.set_command(command) != CommandStatus::accepted;
-    const LoopTick& tick = loop.tick();
-    result.qp_failures += tick.mpc != MpcStatus::solved;
-    for (const auto& s : loop.samples()) {
-      if (s.zmp.valid) {
-        result.zmp_distance.push_back(
-            std::hypot(s.zmp.zmp_W.x() - s.plan.zmp_x, s.zmp.zmp_W.y() - s.plan.zmp_y));
-      }
-    }
-    if (options.on_tick) options.on_tick(robot, t);
-    result.time = robot.output().time - t0;
-    result.final_distance = (true_com(robot) - scene.target).norm();
-    // A stop (stopping: the step is finished, the CoM moves between the feet) is ticked through;
-    // a walk stopped for QP failures starts again, any other fault or stop ends the episode.
-    const bool replan = tick.mode == LoopMode::stopped && tick.reason == StopReason::qp_failures &&
-                        result.restarts < options.max_restarts;
-    if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged ||
-        tick.mode == LoopMode::fault || (tick.mode == LoopMode::stopped && !replan)) {
-      detail::set_stopped(result, tick);
-      break;
-    }
-    if (replan) {
-      ++result.restarts;
-      const LoopTick& restarted = loop.start();
-      if (restarted.status != LoopStatus::ok) {
-        detail::set_stopped(result, restarted);
-        break;
-      }
-    }
-    if (detail::touches_any(robot.data(), forbidden)) {
-      result.status = NavigationStatus::collided;
-      result.collided = true;
-      result.message = "touched an obstacle at t = " + std::to_string(result.time) + " s";
-      break;
-    }
-    if (result.final_distance <= options.reach_distance) {
-      result.status = NavigationStatus::reached;
-      result.reached = true;
-      break;
-    }
-    if (result.time >= limit) {
-      result.status = NavigationStatus::timed_out;
-      result.message = "time limit " + std::to_string(limit) + " s";
-      break;
-    }
-  }
-  return result;
+  NavigationEpisode episode(scene, options);
+  while (!episode.done()) (void)episode.step(policy(episode.observe()));
+  return episode.result();
 }
 
 }  // namespace walkgen
