@@ -34,10 +34,6 @@ from ._core import (  # noqa: F401 (re-exported)
     trajectory_columns,
 )
 from ._core import EpisodeEnd, NmpcGoalSettings, PointGoalSettings  # noqa: F401
-if features.get("ik"):  # built with Ceres
-    from ._core import IkResult, IkStatus, InverseKinematics  # noqa: F401
-if features.get("simulation"):  # built with MuJoCo and Ceres
-    from ._core import LoopMode, LoopStatus, LoopTick, Simulation, StopReason  # noqa: F401
 from . import envs  # noqa: F401,E402 (the Gymnasium-shaped environments)
 
 __all__ = [
@@ -65,3 +61,13 @@ __all__ = [
     "features",
     "trajectory_columns",
 ]
+
+# Parts built only with their adapters (walkgen.features says which).
+if features.get("ik"):  # Ceres
+    from ._core import IkResult, IkStatus, InverseKinematics
+
+    __all__ += ["IkResult", "IkStatus", "InverseKinematics"]
+if features.get("simulation"):  # MuJoCo and Ceres
+    from ._core import LoopMode, LoopStatus, LoopTick, Simulation, StopReason
+
+    __all__ += ["LoopMode", "LoopStatus", "LoopTick", "Simulation", "StopReason"]
