@@ -12,7 +12,18 @@ docs/python.md is the guide. A first plan:
     print(mpc.state().com_x)        # the CoM has walked about 1 m
 """
 
-from ._core import (  # noqa: F401 (re-exported)
+import os as _os
+
+try:  # an installed package (cmake --install) knows where walkgen's data went
+    from ._install import DATA_DIR as _DATA_DIR
+except ImportError:  # the build tree: the data of the source tree it was built from
+    _DATA_DIR = None
+if _DATA_DIR is not None and not _os.environ.get("WALKGEN_DATA_DIR"):
+    _data = _os.path.normpath(_os.path.join(_os.path.dirname(__file__), _DATA_DIR))
+    if _os.path.isdir(_data):  # read by the C++ side's walkgen::data_dir()
+        _os.environ["WALKGEN_DATA_DIR"] = _data
+
+from ._core import (  # noqa: F401,E402 (re-exported)
     CircleObstacle,
     CommandStatus,
     DenseQp,
@@ -33,7 +44,7 @@ from ._core import (  # noqa: F401 (re-exported)
     features,
     trajectory_columns,
 )
-from ._core import EpisodeEnd, NmpcGoalSettings, PointGoalSettings  # noqa: F401
+from ._core import EpisodeEnd, NmpcGoalSettings, PointGoalSettings  # noqa: F401,E402
 from . import envs  # noqa: F401,E402 (the Gymnasium-shaped environments)
 
 __all__ = [
@@ -64,10 +75,10 @@ __all__ = [
 
 # Parts built only with their adapters (walkgen.features says which).
 if features.get("ik"):  # Ceres
-    from ._core import IkResult, IkStatus, InverseKinematics
+    from ._core import IkResult, IkStatus, InverseKinematics  # noqa: E402
 
     __all__ += ["IkResult", "IkStatus", "InverseKinematics"]
 if features.get("simulation"):  # MuJoCo and Ceres
-    from ._core import LoopMode, LoopStatus, LoopTick, Simulation, StopReason
+    from ._core import LoopMode, LoopStatus, LoopTick, Simulation, StopReason  # noqa: E402
 
     __all__ += ["LoopMode", "LoopStatus", "LoopTick", "Simulation", "StopReason"]
