@@ -115,3 +115,23 @@ def test_simulation_errors():
         sim.push([float("nan"), 0, 0], start=0.0, duration=0.1)
     with pytest.raises(ValueError, match="size"):
         sim.render_view([0, 0, 0], width=640, height=480)  # beyond view_width x view_height
+
+
+def test_fk_of_the_measured_joints_matches_mujocos_sensor_poses():
+    """The package's FK (KinematicTree from the URDF) against MuJoCo's own kinematics, both C++:
+    the right ankle sensor seen from the left one, for the joint angles MuJoCo measures."""
+    robot = walkgen.RobotDescription.find("walkgen_humanoid")
+    tree = walkgen.KinematicTree.from_urdf(robot.urdf_path)
+    sim = walkgen.Simulation()
+    assert sim.start().ok
+    walk(sim, 6, vx=0.03)  # mid-walk: bent, swinging legs
+    out = sim.output()
+    angles = dict(zip(sim.joint_names, out["q"]))
+    k = tree.forward_kinematics([angles[name] for name in tree.joint_names])
+    left, right = robot.ft_sensor_frames
+    fk_relative = k.rotation(left).T @ (k.position(right) - k.position(left))
+    T_left, T_right = out["ft"][0]["pose"], out["ft"][1]["pose"]
+    mujoco_relative = T_left[:3, :3].T @ (T_right[:3, 3] - T_left[:3, 3])
+    np.testing.assert_allclose(fk_relative, mujoco_relative, atol=1e-9)
+    np.testing.assert_allclose(k.rotation(left).T @ k.rotation(right),
+                               T_left[:3, :3].T @ T_right[:3, :3], atol=1e-9)
