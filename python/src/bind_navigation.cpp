@@ -33,10 +33,12 @@ class NavigationCore {
   /// A new episode in the scene of `task` and `seed`; returns done() (true when the robot did
   /// not start or cannot render).
   bool reset(const std::string& task, long long seed) {
-    check_argument(seed >= 0 && seed <= 0xffffffffLL, "NavigationEnv: scene seed", "0 to 2^32 - 1",
-                   seed);
+    // The old episode ends first: what follows may throw, and leaves no episode behind then.
+    observed_ = false;
     episode_.reset();
     expert_.reset();
+    check_argument(seed >= 0 && seed <= 0xffffffffLL, "NavigationEnv: scene seed", "0 to 2^32 - 1",
+                   seed);
     scene_ =
         make_navigation_scene(navigation_task_from_string(task), static_cast<std::uint32_t>(seed));
     {
@@ -44,7 +46,6 @@ class NavigationCore {
       episode_ = std::make_unique<NavigationEpisode>(scene_, options_);
     }
     expert_ = std::make_unique<ScriptedExpert>(scene_, heicub_settings<double>().max_command);
-    observed_ = false;
     return episode_->done();
   }
 
@@ -81,8 +82,9 @@ class NavigationCore {
   /// The scripted expert's command for the last observation (walkgen/navigation/
   /// scripted_expert.hpp: it knows the scene).
   py::array_t<double> expert_command() {
-    check_argument(observed_, "NavigationEnv: expert_command", "an observation of this tick",
-                   "none", "call it after reset() or step(), before the next step()");
+    check_argument(observed_ && expert_ != nullptr, "NavigationEnv: expert_command",
+                   "an observation of this tick", "none",
+                   "call it after reset() or step(), before the next step()");
     return to_numpy((*expert_)(observation_));
   }
 

@@ -118,6 +118,12 @@ def _seed_or_random(seed):
     return int(seed)
 
 
+def _gymnasium_reset(env, seed):
+    """gymnasium.Env.reset(seed) (its np_random), with the seed as a plain int, when present."""
+    if _gymnasium is not None:
+        _gymnasium.Env.reset(env, seed=None if seed is None else _seed_or_random(seed))
+
+
 _EnvBase = _gymnasium.Env if _gymnasium is not None else object
 _VectorBase = _gymnasium.vector.VectorEnv if _gymnasium is not None else object
 
@@ -131,8 +137,7 @@ class _Env(_EnvBase):
 
     def reset(self, *, seed=None, options=None):
         """A new task (reseeded when `seed` is given): ``(observation, info)``."""
-        if _gymnasium is not None:
-            super().reset(seed=seed)
+        _gymnasium_reset(self, seed)
         if seed is not None:
             self._core.seed(_seed_or_random(seed))
         if options and "goal" in options:
@@ -304,10 +309,10 @@ class NavigationEnv(_EnvBase):
             "depth": _image_space((h, w), 0.0, np.inf, np.float32)})
 
     def reset(self, *, seed=None, options=None):
-        if _gymnasium is not None:
-            super().reset(seed=seed)
+        _gymnasium_reset(self, seed)
         if seed is not None:
             self._rng = np.random.default_rng(_seed_or_random(seed))
+        self._ended = True  # until the new episode has started
         options = dict(options or {})
         task = options.pop("task", None) or self._tasks[int(self._rng.integers(len(self._tasks)))]
         scene_seed = options.pop("scene_seed", None)
@@ -332,7 +337,9 @@ class NavigationEnv(_EnvBase):
         return obs, self._info()
 
     def expert_action(self):
-        """The scripted expert's command (v_x, v_y, w_z) for the current observation."""
+        """The scripted expert's command (v_x, v_y, w_z) for the current observation. The expert
+        remembers whether it has seen the target: call it on every step of an episode for its
+        behaviour (as run_navigation_episode does)."""
         return self._core.expert_command().astype(np.float32)
 
     def step(self, action):
@@ -369,10 +376,14 @@ class NavigationEnv(_EnvBase):
 class _VectorEnv(_VectorBase):
     """N environments stepped in C++ threads (the GIL released). Same-step auto-reset: when an
     environment's episode ends its returned observation is the first of the next episode, and
-    ``info["final_observation"][i]`` (with ``info["_final_observation"][i]`` True) holds the
-    last one of the episode that ended."""
+    ``info["final_obs"][i]`` (with ``info["_final_obs"][i]`` True; also under Gymnasium 0.29's
+    names ``final_observation``, ``_final_observation``) holds the last one of the episode that
+    ended."""
 
-    metadata = {"render_modes": [], "autoreset_mode": "SameStep"}
+    metadata = {"render_modes": [],
+                # Gymnasium >= 1.0 names the mode with an enum; 0.29 had none (same-step only)
+                "autoreset_mode": getattr(getattr(getattr(_gymnasium, "vector", None),
+                                                  "AutoresetMode", None), "SAME_STEP", "SameStep")}
     render_mode = None
     spec = None
 
@@ -417,6 +428,8 @@ class _VectorEnv(_VectorBase):
         done = terminated | truncated
         info = {"end": names, "message": np.array(messages, dtype=object),
                 "is_success": names == "success",
+                # Gymnasium >= 1.0's same-step keys, and 0.29's (and Stable-Baselines3's)
+                "final_obs": final_obs, "_final_obs": done,
                 "final_observation": final_obs, "_final_observation": done}
         return obs, rewards, terminated, truncated, info
 
