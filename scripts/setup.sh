@@ -13,6 +13,7 @@ packages=(
   clang libclang-rt-14-dev
   ffmpeg tmux clang-format python3-numpy python3-matplotlib
   pybind11-dev python3-dev python3-pytest
+  libcpp-httplib-dev nlohmann-json3-dev chromium chromium-driver python3-selenium
 )
 
 missing=()
