@@ -7,7 +7,7 @@
 // the robot with the keyboard or buttons.
 //
 //   walkgen_dashboard [--robot NAME|PATH] [--port P] [--bind ADDRESS] [--scene TASK [--seed S]]
-//                     [--speed F] [--max-time T] [--camera-period S]
+//                     [--speed F] [--max-time T] [--camera-period S] [--training DIR]
 //     --robot        the robot (default walkgen_humanoid; the closed loop walks no other yet)
 //     --port         TCP port (default 8080; 0: any free one, printed)
 //     --bind         address to listen on (default 127.0.0.1: this machine only)
@@ -16,8 +16,10 @@
 //     --speed        simulated seconds per wall-clock second (default 1: real time)
 //     --max-time     stop after this many simulated seconds (default: until Ctrl-C)
 //     --camera-period  simulated seconds between camera images (default 0.8)
+//     --training     a training run's folder: its CSV logs plotted live (reward, success, losses)
 // API: GET / (the page), GET /api/state (JSON), POST /api/command {"vx","vy","wz"},
-// POST /api/stop, GET /api/events (server-sent events), GET /api/camera/rgb.jpg and depth.jpg.
+// POST /api/stop, GET /api/events (server-sent events), GET /api/camera/rgb.jpg and depth.jpg,
+// GET /api/training (the CSV logs of --training).
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help prints every option.
 #include <httplib.h>
 
@@ -76,7 +78,7 @@ int main(int argc, char** argv) {
       "walkgen_dashboard: the simulated humanoid, its plan and cameras in a browser, "
       "steered from the page (docs/dashboard.md)"};
   walkgen_examples::cli_defaults(app);
-  std::string robot_name = "walkgen_humanoid", bind = "127.0.0.1", scene_name;
+  std::string robot_name = "walkgen_humanoid", bind = "127.0.0.1", scene_name, training_dir;
   int port = 8080;
   std::uint32_t seed = 1000;
   double speed = 1.0, max_time = 0.0, camera_period = 0.8;
@@ -95,6 +97,10 @@ int main(int argc, char** argv) {
   app.add_option("--camera-period", camera_period,
                  "simulated seconds between camera images, >= 0.4 (one NMPC tick)")
       ->check(CLI::Range(0.4, 60.0));
+  app.add_option("--training", training_dir,
+                 "a training run's folder: its CSV logs (ppo_train --out, bc_train.py --out) "
+                 "plotted live")
+      ->check(CLI::ExistingDirectory);
   WALKGEN_CLI_PARSE(app, argc, argv);
 
   walkgen::RobotDescription robot_description;
@@ -133,7 +139,8 @@ int main(int argc, char** argv) {
   httplib::Server server;
   server.new_task_queue = [] { return new httplib::ThreadPool(32); };
   walkgen_dashboard::add_routes(server, board, walkgen_dashboard::kAssets,
-                                std::chrono::milliseconds(50));  // events at most at 20 Hz
+                                std::chrono::milliseconds(50),  // events at most at 20 Hz
+                                training_dir);
   const int bound =
       port == 0 ? server.bind_to_any_port(bind) : (server.bind_to_port(bind, port) ? port : -1);
   if (bound < 0) {

@@ -9,15 +9,22 @@
 #include <httplib.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace walkgen_dashboard {
 
@@ -134,6 +141,65 @@ class Board {
   bool closed_ = false;
 };
 
+/// The CSV logs of a training run in `dir` (examples/ppo_train's learning_<env>.csv,
+/// python/bc_train.py's training_log.csv, or any CSV of numbers with a header) as JSON:
+/// {"enabled", "dir", "files": [{"name", "columns", "rows"}]}, the last kMaxRows rows of each, at
+/// most kMaxFiles files (newest first). A row that is not all numbers is left out; a file that
+/// cannot be read is listed with its "message". Read on each request: the run writes them as it
+/// goes.
+inline nlohmann::json training_logs(const std::string& dir) {
+  constexpr std::size_t kMaxFiles = 8, kMaxRows = 2000;
+  constexpr std::uintmax_t kMaxBytes = 8u << 20;
+  namespace fs = std::filesystem;
+  nlohmann::json out{{"enabled", true}, {"dir", dir}, {"files", nlohmann::json::array()}};
+  std::error_code ec;
+  std::vector<fs::directory_entry> csvs;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.is_regular_file(ec) && e.path().extension() == ".csv") csvs.push_back(e);
+  }
+  if (ec) {
+    out["message"] = "cannot read the folder: " + ec.message();
+    return out;
+  }
+  std::sort(csvs.begin(), csvs.end(), [](const auto& a, const auto& b) {
+    std::error_code e1, e2;
+    return a.last_write_time(e1) > b.last_write_time(e2);
+  });
+  if (csvs.size() > kMaxFiles) csvs.resize(kMaxFiles);
+  for (const auto& e : csvs) {
+    nlohmann::json file{{"name", e.path().filename().string()}};
+    std::ifstream in(e.path());
+    std::string line;
+    if (e.file_size(ec) > kMaxBytes || !in || !std::getline(in, line)) {
+      file["message"] = "not read: empty, unreadable or over 8 MB";
+      out["files"].push_back(file);
+      continue;
+    }
+    std::vector<std::string> columns;
+    std::stringstream header(line);
+    for (std::string c; std::getline(header, c, ',');) columns.push_back(c);
+    std::deque<std::vector<double>> rows;
+    while (std::getline(in, line)) {
+      std::vector<double> row;
+      std::stringstream cells(line);
+      bool numbers = true;
+      for (std::string c; std::getline(cells, c, ',');) {
+        char* end = nullptr;
+        const double v = std::strtod(c.c_str(), &end);
+        numbers = numbers && end != c.c_str() && *end == '\0' && std::isfinite(v);
+        row.push_back(v);
+      }
+      if (!numbers || row.size() != columns.size()) continue;
+      rows.push_back(std::move(row));
+      if (rows.size() > kMaxRows) rows.pop_front();
+    }
+    file["columns"] = columns;
+    file["rows"] = rows;
+    out["files"].push_back(file);
+  }
+  return out;
+}
+
 /// The page's files, served from memory (examples/dashboard/web/, embedded at build time).
 struct Asset {
   const char* path;
@@ -142,9 +208,10 @@ struct Asset {
 };
 
 /// Routes of the dashboard on `server` (docs/dashboard.md lists them).
+/// `training_dir`: the folder of GET /api/training (empty: none, {"enabled": false}).
 template <std::size_t N>
 void add_routes(httplib::Server& server, Board& board, const Asset (&assets)[N],
-                std::chrono::milliseconds event_period) {
+                std::chrono::milliseconds event_period, const std::string& training_dir) {
   server.set_payload_max_length(kMaxBody);
   for (const Asset& a : assets) {
     server.Get(a.path, [a](const httplib::Request&, httplib::Response& res) {
@@ -161,6 +228,14 @@ void add_routes(httplib::Server& server, Board& board, const Asset (&assets)[N],
     res.set_content(
         nlohmann::json{{"status", status == 200 ? "ok" : "error"}, {"message", message}}.dump(),
         "application/json");
+  });
+  server.Get("/api/training", [training_dir](const httplib::Request&, httplib::Response& res) {
+    if (training_dir.empty()) {  // 200, so that the page's check logs no error
+      res.set_content(R"({"enabled":false,"message":"no training log: start with --training DIR"})",
+                      "application/json");
+      return;
+    }
+    res.set_content(training_logs(training_dir).dump(), "application/json");
   });
   server.Post("/api/stop", [&board](const httplib::Request&, httplib::Response& res) {
     board.post_stop();

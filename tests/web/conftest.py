@@ -75,6 +75,33 @@ def dashboard():
     assert d.stop() == 0, d.process.stdout.read()
 
 
+HEADER = ("epoch,steps,mean_reward,mean_return,episodes,wins,losses,truncations,std,seconds,"
+          "policy_loss,value_loss,entropy,approx_kl,clip_fraction\n")
+
+
+def ppo_row(epoch):
+    """A row of examples/ppo_train's learning_<env>.csv, improving with the epoch."""
+    return (f"{epoch},{2048 * epoch},{-1 + 0.1 * epoch},{10 * epoch},20,{min(20, 2 * epoch)},"
+            f"{max(0, 10 - epoch)},0,0.5,1.2,{1 / epoch},{5 / epoch},1.3,0.01,0.1\n")
+
+
+@pytest.fixture
+def training_run(tmp_path):
+    """A training run's folder with a PPO log of 5 epochs (more can be appended)."""
+    log = tmp_path / "learning_nmpc.csv"
+    log.write_text(HEADER + "".join(ppo_row(e) for e in range(1, 6)))
+    (tmp_path / "notes.csv").write_text("not,numbers\nsome,text\n")
+    return tmp_path
+
+
+@pytest.fixture
+def training_dashboard(training_run):
+    d = Dashboard(["--speed", "4", "--training", str(training_run)])
+    d.wait(lambda s: s.get("ticks", 0) >= 1)
+    yield d
+    assert d.stop() == 0, d.process.stdout.read()
+
+
 @pytest.fixture
 def screenshots():
     directory = os.environ.get("WALKGEN_SCREENSHOTS", "dashboard_screenshots")

@@ -102,3 +102,25 @@ def test_the_camera_panel_shows_the_cameras_image(browser, dashboard, screenshot
     assert depth == size[0]
     browser.save_screenshot(os.path.join(screenshots, "dashboard_camera.png"))
     assert console_errors(browser) == []
+
+
+def test_the_training_view_plots_a_runs_log(browser, training_dashboard, training_run,
+                                            screenshots):
+    from conftest import ppo_row
+    open_page(browser, training_dashboard)
+    WebDriverWait(browser, 20).until(lambda d: d.execute_script(
+        "return window.dashboard.trainingRows") == 5)
+    assert browser.find_element(By.ID, "training-panel").is_displayed()
+    with open(training_run / "learning_nmpc.csv", "a") as f:  # plotted live
+        f.write(ppo_row(6))
+    WebDriverWait(browser, 20).until(lambda d: d.execute_script(
+        "return window.dashboard.trainingRows") == 6)
+    inked = browser.execute_script("""
+        const c = document.getElementById('plot-success'), g = c.getContext('2d');
+        const d = g.getImageData(0, 20, c.width, c.height - 20).data; let n = 0;
+        for (let i = 0; i < d.length; i += 4) if (d[i + 3] > 0) n++;
+        return n;""")
+    assert inked > 100  # the success-rate curve is drawn
+    browser.execute_script("document.getElementById('training-panel').scrollIntoView()")
+    browser.save_screenshot(os.path.join(screenshots, "dashboard_training.png"))
+    assert console_errors(browser) == []

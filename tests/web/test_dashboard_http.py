@@ -82,3 +82,24 @@ def test_camera_images_are_jpegs(dashboard):
     assert status == 200 and rgb[:2] == b"\xff\xd8"  # JPEG's start of image
     status, depth = dashboard.request("/api/camera/depth.jpg")
     assert status == 200 and depth[:2] == b"\xff\xd8"
+
+
+def test_training_logs_are_served_live(training_dashboard, training_run):
+    from conftest import ppo_row
+    status, body = training_dashboard.request("/api/training")
+    reply = json.loads(body)
+    assert status == 200 and reply["enabled"]
+    files = {f["name"]: f for f in reply["files"]}
+    log = files["learning_nmpc.csv"]
+    assert log["columns"][:3] == ["epoch", "steps", "mean_reward"] and len(log["rows"]) == 5
+    assert log["rows"][-1][2] == -0.5  # mean_reward of epoch 5
+    assert files["notes.csv"]["rows"] == []  # text rows are left out
+    with open(training_run / "learning_nmpc.csv", "a") as f:  # the run goes on
+        f.write(ppo_row(6))
+    rows = json.loads(training_dashboard.request("/api/training")[1])["files"]
+    assert [len(f["rows"]) for f in rows if f["name"] == "learning_nmpc.csv"] == [6]
+
+
+def test_without_a_training_folder_the_view_is_off(dashboard):
+    status, body = dashboard.request("/api/training")
+    assert status == 200 and json.loads(body)["enabled"] is False

@@ -236,31 +236,79 @@ window.addEventListener("mousemove", (e) => {
 canvas.addEventListener("dblclick", () => { dashboard.view.follow = true; draw(); });
 
 // --- live plots ---------------------------------------------------------------------------------
-function plot(id, title, series) {
+function plot(id, title, series, rows) {
   const c = document.getElementById(id);
   const g = c.getContext("2d");
-  const h = dashboard.history;
+  const h = rows || dashboard.history;
   g.clearRect(0, 0, c.width, c.height);
   g.fillStyle = "#333";
   g.font = "11px sans-serif";
   g.fillText(title, 4, 11);
   if (h.length < 2) return;
-  let max = 1e-9;
-  for (const [column] of series) for (const row of h) max = Math.max(max, row[column]);
+  let max = -Infinity, min = Infinity;
+  for (const [column] of series) for (const row of h) { max = Math.max(max, row[column]); min = Math.min(min, row[column]); }
+  min = Math.min(min, 0);
+  if (max <= min) max = min + 1e-9;
   const x = (i) => 4 + (c.width - 8) * i / (h.length - 1);
-  const y = (value) => c.height - 4 - (c.height - 20) * value / max;
-  series.forEach(([column, color, label], k) => {
+  const y = (value) => c.height - 4 - (c.height - 20) * (value - min) / (max - min);
+  let labelX = 4 + g.measureText(title).width + 14;  // the series' labels follow the title
+  series.forEach(([column, color, label]) => {
     g.strokeStyle = color;
     g.lineWidth = 1.5;
     g.beginPath();
     h.forEach((row, i) => { if (i === 0) g.moveTo(x(i), y(row[column])); else g.lineTo(x(i), y(row[column])); });
     g.stroke();
     g.fillStyle = color;
-    g.fillText(label + " " + h[h.length - 1][column].toFixed(3), 150 + 130 * k, 11);
+    const text = label + " " + h[h.length - 1][column].toPrecision(4);
+    g.fillText(text, labelX, 11);
+    labelX += g.measureText(text).width + 12;
   });
   g.fillStyle = "#999";
   g.fillText("max " + max.toPrecision(3), c.width - 70, c.height - 6);
+  if (min < 0) g.fillText("min " + min.toPrecision(3), c.width - 70, 24);
 }
+
+// --- the training view (walkgen_dashboard --training DIR) -----------------------------------------
+// Plots the newest CSV log of the run: reward (mean_reward, else the first column with "reward"
+// or "return"), success rate (wins / episodes) and losses (columns ending in _loss or _mse).
+async function refreshTraining() {
+  let reply;
+  try {
+    reply = await (await fetch("/api/training")).json();
+    if (!reply.enabled) return false;  // not started with --training: no panel, no polling
+  } catch (err) {
+    return true;
+  }
+  document.getElementById("training-panel").hidden = false;
+  document.getElementById("training-dir").textContent = "(" + reply.dir + ")";
+  const file = reply.files.find((f) => f.rows && f.rows.length > 1);
+  const message = document.getElementById("training-message");
+  if (!file) {
+    message.textContent = reply.message || "no CSV log with two rows yet in " + reply.dir;
+    return true;
+  }
+  message.textContent = file.name + ": " + file.rows.length + " rows";
+  const col = (name) => file.columns.indexOf(name);
+  const find = (test) => file.columns.findIndex(test);
+  const reward = col("mean_reward") >= 0 ? col("mean_reward") : find((c) => /reward|return/.test(c));
+  const rows = file.rows.map((r) => r.slice());
+  if (reward >= 0) plot("plot-reward", "reward (" + file.columns[reward] + ")", [[reward, "#2e7d32", "last"]], rows);
+  const wins = col("wins"), episodes = col("episodes");
+  if (wins >= 0 && episodes >= 0) {
+    const k = file.columns.length;
+    rows.forEach((r) => r.push(r[episodes] > 0 ? r[wins] / r[episodes] : 0));
+    plot("plot-success", "success rate (wins / episodes)", [[k, "#1565c0", "last"]], rows);
+  }
+  const colors = ["#ef6c00", "#8e24aa", "#00838f", "#6d4c41"];
+  const losses = file.columns.map((c, i) => [i, c]).filter(([, c]) => /(_loss|_mse)$/.test(c)).slice(0, 4);
+  if (losses.length) plot("plot-losses", "losses", losses.map(([i, c], k) => [i, colors[k], c]), rows);
+  dashboard.trainingRows = file.rows.length;
+  return true;
+}
+
+(async () => {
+  if (await refreshTraining()) setInterval(refreshTraining, 2000);
+})();
 
 function drawPlots() {
   plot("plot-zmp", "ZMP error [cm]", [[1, "#8e24aa", "mean"]]);
