@@ -40,6 +40,8 @@
 #include "dashboard/server.hpp"
 #include "dashboard_assets.hpp"  // generated from examples/dashboard/web/ (CMakeLists.txt)
 #include "walkgen/mujoco/navigation_scene.hpp"
+#include "walkgen/opencv/depth_obstacles.hpp"
+#include "walkgen/opencv/stereo_depth.hpp"
 #include "walkgen/simulation/humanoid_loop.hpp"
 #include "walkgen/yaml/robot_description_loader.hpp"
 
@@ -170,6 +172,7 @@ int main(int argc, char** argv) {
   const double t0 = robot.output().time;
   const auto wall0 = std::chrono::steady_clock::now();
   Eigen::Vector3d command = Eigen::Vector3d::Zero();
+  std::vector<walkgen::CircleObstacle<double>> seen;  // obstacles found in the camera's depth
   double next_image = 0.0, compute_ms = 0.0;
   long ticks = 0;
   while (exit_code == 0 && g_signal == 0 &&
@@ -199,6 +202,11 @@ int main(int argc, char** argv) {
       if (images.status == walkgen::RenderStatus::ok) {
         auto [rgb, depth] = encode_images(images.left);
         board.publish_images(std::move(rgb), std::move(depth));
+        // What the camera sees as obstacles (walkgen::obstacles_from_depth on its depth image)
+        const walkgen::CameraImage& c = images.left;
+        const cv::Mat depth_image(c.height, c.width, CV_32F, const_cast<float*>(c.depth.data()));
+        seen = walkgen::obstacles_from_depth(
+            depth_image, walkgen::pinhole_from_fovy(c.width, c.height, c.fovy), c.pose_W_C);
       } else {
         board.set_camera_message(images.message);
       }
@@ -259,6 +267,9 @@ int main(int argc, char** argv) {
     for (const auto& o : loop.mpc().obstacles())
       obstacles.push_back({o.x, o.y, o.radius, o.margin});
     j["obstacles"] = obstacles;
+    nlohmann::json seen_json = nlohmann::json::array();
+    for (const auto& o : seen) seen_json.push_back({o.x, o.y, o.radius});
+    j["seen_obstacles"] = seen_json;
     j["target"] = scene ? xy(scene->target.x(), scene->target.y()) : nlohmann::json();
     j["ticks"] = ticks;
     board.publish_state(j.dump());

@@ -103,3 +103,18 @@ def test_training_logs_are_served_live(training_dashboard, training_run):
 def test_without_a_training_folder_the_view_is_off(dashboard):
     status, body = dashboard.request("/api/training")
     assert status == 200 and json.loads(body)["enabled"] is False
+
+
+def test_the_camera_finds_the_chair_of_the_obstacle_room():
+    from conftest import Dashboard
+    d = Dashboard(["--speed", "4", "--scene", "obstacle", "--seed", "3"])
+    try:
+        s = d.wait(lambda s: s.get("ticks", 0) >= 1)
+        chair = s["obstacles"][0]  # the room's chair, an NMPC obstacle (x, y, radius, margin)
+        seen = s["seen_obstacles"]
+        assert seen, "nothing found in the depth image"
+        nearest = min(seen, key=lambda o: (o[0] - chair[0]) ** 2 + (o[1] - chair[1]) ** 2)
+        assert abs(nearest[0] - chair[0]) < 0.1 and abs(nearest[1] - chair[1]) < 0.1, (nearest, chair)
+        assert abs(nearest[2] - chair[2]) < 0.1
+    finally:
+        assert d.stop() == 0

@@ -201,6 +201,11 @@ function draw() {
     ctx.strokeStyle = "#78909c"; ctx.setLineDash([3, 3]);
     ctx.beginPath(); ctx.arc(x, y, (o[2] + o[3]) * v.scale, 0, 2 * Math.PI); ctx.stroke();
   }
+  for (const o of s.seen_obstacles || []) {  // found in the camera's depth: x, y, radius
+    const [x, y] = toPx(o);
+    ctx.strokeStyle = "#f57c00"; ctx.lineWidth = 2; ctx.setLineDash([6, 3]);
+    ctx.beginPath(); ctx.arc(x, y, o[2] * v.scale, 0, 2 * Math.PI); ctx.stroke();
+  }
   if (s.target) rect(s.target, 0, 0.12, 0.12, "#d32f2f");
   polyline(dashboard.path, "#81c784", 2);
   const [length, width] = s.foot_size;
