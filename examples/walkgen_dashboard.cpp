@@ -254,6 +254,7 @@ int main(int argc, char** argv) {
                      ? 0.0
                      : std::hypot(samples.back().plan.com_x[1], samples.back().plan.com_y[1]);
     j["compute_ms"] = compute_ms;
+    j["mpc_ms"] = 1e3 * tick->mpc_seconds;
     j["support"] = walkgen::to_string(st.support_foot);
     j["feet"] = {{"support", pose(st.support)},
                  {"swing", nlohmann::json::array(

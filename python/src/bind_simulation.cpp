@@ -221,6 +221,7 @@ void bind_simulation(py::module_& m) {
       .def_readonly("mpc", &LoopTick::mpc)
       .def_readonly("ik_failures", &LoopTick::ik_failures)
       .def_readonly("qp_failure_streak", &LoopTick::qp_failure_streak)
+      .def_readonly("mpc_seconds", &LoopTick::mpc_seconds, "wall time of the NMPC's solve [s]")
       .def_readonly("fed_back", &LoopTick::fed_back)
       .def_readonly("estimated", &LoopTick::estimated)
       .def_property_readonly("com_error", [](const LoopTick& t) { return to_numpy(t.com_error); })

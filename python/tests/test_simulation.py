@@ -34,6 +34,7 @@ def test_the_humanoid_walks_forward_with_its_zmp_near_the_plan():
     period = sim.state().time  # the generator's time after start
     ticks_seen, zmp_errors, com_errors = walk(sim, ticks, vx=speed)
     assert all(t.ok for t in ticks_seen), [str(t) for t in ticks_seen if not t.ok]
+    assert all(0.0 < t.mpc_seconds < 1.0 for t in ticks_seen)  # the NMPC's solve, timed
     walked = sim.true_com() - start
     duration = sim.state().time - period
     assert duration == pytest.approx(ticks * 0.4)  # Heicub's period t = 0.4 s

@@ -206,6 +206,9 @@ TEST(WalkingLoop, FeedsTheMeasuredComBackEveryFeedbackPeriod) {
     const walkgen::LoopTick& tick = loop.tick();
     ASSERT_EQ(tick.status, LoopStatus::ok);
     EXPECT_EQ(tick.fed_back, k > 0 && k % 2 == 0) << "tick " << k;
+    // the NMPC ran and was timed (monitoring, e.g. the dashboard's plot): a real duration
+    EXPECT_GT(tick.mpc_seconds, 0.0) << "tick " << k;
+    EXPECT_LT(tick.mpc_seconds, 1.0) << "tick " << k;
     fed += tick.fed_back;
     if (tick.fed_back) worst = std::max(worst, tick.com_error.norm());
     // The measured CoM of every sample next to the planned one.

@@ -12,6 +12,7 @@ def test_state_has_what_the_page_draws(dashboard):
                 "feet", "obstacles"):
         assert key in s, key
     assert s["status"] == "ok" and s["mode"] == "walking"
+    assert 0.0 < s["mpc_ms"] < s["compute_ms"]  # the NMPC's solve is timed, within the tick
     assert len(s["footsteps"]) >= 1 and len(s["footsteps"][0]) == 3
     status, page = dashboard.request("/")
     assert status == 200 and b"<canvas id=\"topview\"" in page

@@ -43,7 +43,7 @@ function onState(s) {
   if (!last || Math.hypot(last[0] - s.com[0], last[1] - s.com[1]) > 0.005) dashboard.path.push(s.com);
   if (dashboard.path.length > 5000) dashboard.path.shift();
   const commandSpeed = Math.hypot(s.command[0], s.command[1]);
-  dashboard.history.push([s.time, s.zmp_error * 100, s.speed, commandSpeed, s.compute_ms]);
+  dashboard.history.push([s.time, s.zmp_error * 100, s.speed, commandSpeed, s.compute_ms, s.mpc_ms]);
   if (dashboard.history.length > 300) dashboard.history.shift();
   const text = s.mode + (s.message ? ": " + s.message : "");
   setStatus(s.mode, text);
@@ -318,7 +318,7 @@ async function refreshTraining() {
 function drawPlots() {
   plot("plot-zmp", "ZMP error [cm]", [[1, "#8e24aa", "mean"]]);
   plot("plot-speed", "speed [m/s]", [[2, "#2e7d32", "CoM"], [3, "#1565c0", "command"]]);
-  plot("plot-compute", "tick compute time [ms]", [[4, "#ef6c00", "NMPC+IK+physics"]]);
+  plot("plot-compute", "compute time per tick [ms]", [[5, "#c62828", "NMPC (QP)"], [4, "#ef6c00", "all"]]);
 }
 
 // --- the camera -----------------------------------------------------------------------------------

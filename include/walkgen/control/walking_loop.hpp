@@ -36,6 +36,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -338,6 +339,9 @@ struct LoopTick {
   /// Ticks in a row, this one included, whose plan is the previous one shifted
   /// (MpcStatus::qp_failed); 0 after a tick that solved or did not run the NMPC.
   int qp_failure_streak = 0;
+  /// Wall-clock time of the NMPC's solve() in this tick (its SQP iterations and QPs) [s]; 0 when
+  /// the tick ran no NMPC (stopped, fault). For monitoring: steady_clock, no allocation.
+  double mpc_seconds = 0.0;
   bool fed_back = false;
   /// The feedback came from the estimator (FeedbackSource::estimator with a started estimate).
   bool estimated = false;
@@ -540,7 +544,10 @@ class WalkingLoop {
     }
     const bool plan_valid = planning && mode_ != LoopMode::fault;  // feedback may find a fault
     if (plan_valid) {
+      const auto solve_start = std::chrono::steady_clock::now();
       const MpcResult<double>& solved = mpc_.solve();
+      tick_.mpc_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
       tick_.mpc = solved.status;
       mpc_message = solved.message;
       qp_streak_ = solved.status == MpcStatus::qp_failed ? qp_streak_ + 1 : 0;
@@ -607,6 +614,7 @@ class WalkingLoop {
   void begin_tick() {
     tick_.status = LoopStatus::not_started;
     tick_.mpc = MpcStatus::solved;
+    tick_.mpc_seconds = 0.0;
     tick_.ik_failures = 0;
     tick_.qp_failure_streak = 0;
     tick_.fed_back = false;
