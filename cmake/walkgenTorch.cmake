@@ -22,3 +22,14 @@ if(WALKGEN_TORCH_FOUND AND EXISTS /usr/bin/python3)
     set(WALKGEN_TORCH_PYTHON ON)
   endif()
 endif()
+
+# Data-parallel training (walkgen/torch/distributed.hpp) uses c10d's Gloo process group, whose
+# symbols are in libtorch; its headers include Gloo's own, which Debian ships in libgloo-dev.
+#   WALKGEN_TORCH_DISTRIBUTED   ON when libtorch and the Gloo headers were found
+set(WALKGEN_TORCH_DISTRIBUTED OFF)
+if(WALKGEN_TORCH_FOUND)
+  find_path(WALKGEN_GLOO_INCLUDE_DIR gloo/algorithm.h)
+  if(WALKGEN_GLOO_INCLUDE_DIR)
+    set(WALKGEN_TORCH_DISTRIBUTED ON)
+  endif()
+endif()

@@ -13,20 +13,31 @@
 // python/plot_learning.py.
 //
 // Options (CLI11, examples/common/cli.hpp; --help lists them with their defaults):
+//   --config FILE   PPO hyper-parameters and the run's schedule from YAML (walkgen::PpoConfig,
+//                   keys in docs/learning.md); the options below override the file
 //   --epochs E      training epochs, >= 1 (default 50 for benchmark, 30 for nmpc)
-//   --steps S       environment steps per epoch, >= 1 (default 10000 benchmark, 8192 nmpc)
-//   --seed N        seed of the policy and the training environments (default 1)
+//   --steps S       environment steps per epoch, all processes, >= 1 (default 10000 benchmark,
+//                   8192 nmpc), rounded up to whole updates
+//   --seed N        seed of the weights, environments, noise and minibatch order (default 1)
 //   --out DIR       output folder, created if missing (default .)
-//   --envs K        environments stepped at once, >= 1 (default 8)
-//   --threads T     nmpc: threads that step them, >= 1 (default 2)
+//   --envs K        environments, all processes (default 8)
+//   --threads T     threads that step a process's environments (default 2; benchmark 1)
 //   --obstacles K   nmpc: circular obstacles per episode, >= 0 (default 0)
+//   --checkpoint-every K   epochs between checkpoints (<out>/checkpoint_<env>.pt; 0: none)
+//   --resume        continue from <out>/checkpoint_<env>.pt: the result equals an uninterrupted run
+//   --stop-after E  stop after E epochs of this invocation, as an interruption would (for tests)
+//   --world-size W, --rank R, --master-addr A, --master-port P
+//                   data-parallel training over W processes (c10d Gloo); default from torchrun's
+//                   WORLD_SIZE, RANK, MASTER_ADDR, MASTER_PORT; rank 0 logs, saves and tests
 //   --policy FILE   test this saved policy (an existing file) instead of training
 //   --test-runs R   benchmark: test runs of 10 000 steps, >= 1 (default 10)
 //   --test-goals G  nmpc: held-out test goals, >= 1 (default 100)
 //   --plot          draw the PNGs (python/plot_learning.py)
-//   --quiet         no line per epoch
-// A bad command line exits 2 with one line on stderr.
+//   --quiet         no progress output
+// Progress: a bar with the ETA on a terminal, else one line per epoch. <out>/config_<env>.yaml
+// records the settings in effect. A bad command line exits 2 with one line on stderr.
 #include <torch/torch.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -38,117 +49,239 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "common/cli.hpp"
+#include "walkgen/core/atomic_file.hpp"
 #include "walkgen/learning/environment.hpp"
 #include "walkgen/learning/nmpc_environment.hpp"
 #include "walkgen/learning/step_pool.hpp"
 #include "walkgen/torch/ppo.hpp"
 #include "walkgen/torch/training.hpp"
+#include "walkgen/yaml/ppo_settings_loader.hpp"
+#if WALKGEN_HAS_DISTRIBUTED
+#include "walkgen/torch/distributed.hpp"
+#endif
 
 namespace {
 
 struct Options {
   std::string env;
-  int epochs = -1;
-  long steps = -1;
-  std::uint64_t seed = 1;
+  std::string config;
+  walkgen::PpoConfig cfg;  // the settings in effect: defaults, then --config, then options
   std::string out = ".";
-  int envs = 8;
-  int threads = 2;
   int obstacles = 0;
+  bool resume = false;
+  int stop_after = 0;
+  int world_size = 1, rank = 0, master_port = 29500;
+  std::string master_addr = "127.0.0.1";
   std::string policy;
   int test_runs = 10;
   int test_goals = 100;
   bool plot = false;
   bool quiet = false;
+  walkgen::PpoCommunicator* communicator = nullptr;
+  bool lead() const { return rank == 0; }
 };
 
 std::string env_name(const Options& o) {
   return o.env == "nmpc" && o.obstacles > 0 ? "nmpc_obstacles" : o.env;
 }
 
-// Trains for o.epochs epochs of o.steps steps; writes the CSV log. With a `validate` score
-// (higher is better, e.g. test-mode wins on a validation environment), the policy of the best
-// epoch is kept (the thesis also kept its best network); otherwise the last one. Saves it
+// "1m05s", "42s": the time left, for the progress bar.
+std::string duration_text(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  char buf[32];
+  if (s >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", s);
+  return buf;
+}
+
+// The CSV log's rows of epochs <= `epochs` (a resumed run continues the log of its checkpoint).
+void truncate_log(const std::string& csv, int epochs) {
+  std::ifstream in(csv);
+  if (!in) return;
+  std::string line, kept;
+  for (int row = 0; std::getline(in, line); ++row)
+    if (row == 0 || std::atoi(line.c_str()) <= epochs) kept += line + '\n';
+  in.close();
+  walkgen::write_atomically(csv, [&](const std::string& temp) {
+    std::ofstream out(temp);
+    out << kept;
+  });
+}
+
+constexpr const char* kLogHeader =
+    "epoch,steps,mean_reward,mean_return,episodes,wins,losses,truncations,std,seconds,"
+    "policy_loss,value_loss,entropy,approx_kl,clip_fraction,total_steps,success_rate,elapsed,"
+    "updates\n";
+
+// Trains o.cfg.run.epochs epochs; writes the CSV log (rank 0). With a `validate` score (higher
+// is better, e.g. test-mode wins on a validation environment), the policy of the best epoch is
+// kept (the thesis also kept its best network); otherwise the last one. Saves it
 // (TorchPpo::save replaces the file atomically: a crash mid-save leaves the previous policy).
+// Every checkpoint_every epochs a checkpoint (TorchPpo::save_checkpoint) lets --resume continue.
+// Returns false when --stop-after ended the run early.
 template <class Env>
-void train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, int rollout_steps,
-           walkgen::StepPool& pool, const Options& o, const std::string& policy_path,
+bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& pool,
+           const Options& o, const std::string& policy_path,
            const std::function<double()>& validate = nullptr) {
-  walkgen::PpoTrainer<Env> trainer(ppo, envs, rollout_steps, &pool);
+  const walkgen::PpoRunSettings& run = o.cfg.run;
+  walkgen::PpoTrainer<Env> trainer(ppo, envs, run.rollout_steps, &pool);
   const std::string csv = o.out + "/learning_" + env_name(o) + ".csv";
-  std::ofstream log(csv);
-  log << "epoch,steps,mean_reward,mean_return,episodes,wins,losses,truncations,std,seconds,"
-         "policy_loss,value_loss,entropy,approx_kl,clip_fraction\n";
-  double total = 0.0, best = -1e300;
+  const std::string checkpoint = o.out + "/checkpoint_" + env_name(o) + ".pt";
+  double best = -1e300, elapsed = 0.0, total_steps = 0.0;
   int best_epoch = 0;
-  for (int e = 0; e < o.epochs; ++e) {
-    const walkgen::PpoEpoch ep = trainer.run_epoch(o.steps);
-    total += ep.seconds;
-    const double score = validate ? validate() : 0.0;
-    if (!validate || score >= best) {
-      best = score;
-      best_epoch = ep.epoch;
-      ppo.save(policy_path);
+  const std::vector<std::string> counters = {"epoch",      "best_score",   "best_epoch",
+                                             "elapsed",    "total_steps",  "envs",
+                                             "world_size", "rollout_steps"};
+  if (o.resume) {
+    const auto c = ppo.resume_checkpoint(checkpoint, counters);
+    const auto check_same = [&](double saved, double now, const char* what) {
+      walkgen::check_argument(
+          saved == now, "--resume", std::string("the checkpoint's ") + what,
+          std::to_string(now) + " (the checkpoint has " + std::to_string(saved) + ")");
+    };
+    check_same(c[5], run.envs, "envs");
+    check_same(c[6], o.world_size, "world size");
+    check_same(c[7], run.rollout_steps, "rollout_steps");
+    trainer.set_epoch(static_cast<int>(c[0]));
+    best = c[1];
+    best_epoch = static_cast<int>(c[2]);
+    elapsed = c[3];
+    total_steps = c[4];
+    if (o.lead()) {
+      truncate_log(csv, trainer.epochs());
+      std::printf("resumed %s from %s after epoch %d (%.0f steps)\n", env_name(o).c_str(),
+                  checkpoint.c_str(), trainer.epochs(), total_steps);
     }
-    log << ep.epoch << ',' << ep.steps << ',' << ep.mean_reward << ',' << ep.mean_return << ','
-        << ep.episodes << ',' << ep.wins << ',' << ep.losses << ',' << ep.truncations << ','
-        << ep.std << ',' << ep.seconds << ',' << ep.update.policy_loss << ','
-        << ep.update.value_loss << ',' << ep.update.entropy << ',' << ep.update.approx_kl << ','
-        << ep.update.clip_fraction << '\n';
-    log.flush();
-    if (!o.quiet)
+  }
+  std::ofstream log;
+  if (o.lead()) {
+    const bool append = o.resume && std::filesystem::exists(csv);
+    log.open(csv, append ? std::ios::app : std::ios::trunc);
+    if (!append) log << kLogHeader;
+  }
+  const bool bar = o.lead() && !o.quiet && isatty(fileno(stdout));
+  int done_here = 0;
+  double here_seconds = 0.0;  // this invocation's epochs: the ETA's rate
+  while (trainer.epochs() < run.epochs) {
+    if (o.stop_after > 0 && done_here == o.stop_after) {
+      if (bar) std::printf("\n");
+      std::printf("stopped after epoch %d (--stop-after %d); continue with --resume\n",
+                  trainer.epochs(), o.stop_after);
+      return false;
+    }
+    const walkgen::PpoEpoch ep = trainer.run_epoch(run.steps);
+    ++done_here;
+    elapsed += ep.seconds;
+    total_steps += static_cast<double>(ep.steps);
+    if (o.lead()) {
+      const double score = validate ? validate() : 0.0;
+      if (!validate || score >= best) {
+        best = score;
+        best_epoch = ep.epoch;
+        ppo.save(policy_path);
+      }
+      log << ep.epoch << ',' << ep.steps << ',' << ep.mean_reward << ',' << ep.mean_return << ','
+          << ep.episodes << ',' << ep.wins << ',' << ep.losses << ',' << ep.truncations << ','
+          << ep.std << ',' << ep.seconds << ',' << ep.update.policy_loss << ','
+          << ep.update.value_loss << ',' << ep.update.entropy << ',' << ep.update.approx_kl << ','
+          << ep.update.clip_fraction << ',' << static_cast<long long>(total_steps) << ','
+          << ep.success_rate() << ',' << elapsed << ',' << ppo.updates() << '\n';
+      log.flush();
+      if (run.checkpoint_every > 0 &&
+          (ep.epoch % run.checkpoint_every == 0 || ep.epoch == run.epochs))
+        ppo.save_checkpoint(checkpoint, {{"epoch", ep.epoch},
+                                         {"best_score", best},
+                                         {"best_epoch", best_epoch},
+                                         {"elapsed", elapsed},
+                                         {"total_steps", total_steps},
+                                         {"envs", run.envs},
+                                         {"world_size", o.world_size},
+                                         {"rollout_steps", run.rollout_steps}});
+    }
+    if (o.quiet || !o.lead()) continue;
+    const double eta = (here_seconds += ep.seconds) / done_here * (run.epochs - ep.epoch);
+    if (bar) {
+      const int width = 24, filled = width * ep.epoch / run.epochs;
+      std::printf("\r%s [%s%s] %3d/%d  reward %8.4f  success %5.1f %%  std %.3f  ETA %-8s",
+                  env_name(o).c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                  std::string(static_cast<std::size_t>(width - filled), '.').c_str(), ep.epoch,
+                  run.epochs, ep.mean_reward, 100.0 * ep.success_rate(), ep.std,
+                  duration_text(eta).c_str());
+      std::fflush(stdout);
+    } else {
       std::printf(
           "epoch %3d/%d  mean reward %9.4f  return %9.2f  wins %4d  losses %3d  "
-          "timeouts %3d  std %.3f  %.1f s\n",
-          ep.epoch, o.epochs, ep.mean_reward, ep.mean_return, ep.wins, ep.losses, ep.truncations,
-          ep.std, ep.seconds);
+          "timeouts %3d  std %.3f  %.1f s  ETA %s\n",
+          ep.epoch, run.epochs, ep.mean_reward, ep.mean_return, ep.wins, ep.losses, ep.truncations,
+          ep.std, ep.seconds, duration_text(eta).c_str());
+    }
   }
-  std::printf("trained %s: %d epochs in %.1f s, log %s, policy of epoch %d saved to %s\n",
-              env_name(o).c_str(), o.epochs, total, csv.c_str(), best_epoch, policy_path.c_str());
-  ppo.load_parameters(policy_path);
+  if (bar) std::printf("\n");
+  // The last epoch's weights of every process (they are the same: the test of the distributed
+  // run compares them); the best epoch's policy is policy_path.
+  ppo.save(o.out + "/ppo_" + env_name(o) + "_last" +
+           (o.lead() ? std::string() : ".rank" + std::to_string(o.rank)) + ".pt");
+  if (o.lead()) {
+    std::printf(
+        "trained %s: %d epochs, %.0f steps in %.1f s (%.0f environment steps/s, %d process%s), "
+        "log %s, policy of epoch %d saved to %s\n",
+        env_name(o).c_str(), run.epochs, total_steps, elapsed,
+        total_steps / std::max(1e-9, elapsed), o.world_size, o.world_size > 1 ? "es" : "",
+        csv.c_str(), best_epoch, policy_path.c_str());
+    ppo.load_parameters(policy_path);
+  }
+  return true;
+}
+
+// The environments of this process: its share of the run's, as consecutive global indices.
+int local_envs(const Options& o) {
+  walkgen::check_argument(o.cfg.run.envs % o.world_size == 0, "--envs",
+                          "a multiple of the world size " + std::to_string(o.world_size),
+                          o.cfg.run.envs);
+  return o.cfg.run.envs / o.world_size;
 }
 
 int run_benchmark(const Options& o) {
-  // Thesis §11.2.1: actor and critic 16-32 ReLU, tanh mean, ε = 0.2, c1 = 0.5; 10 000 steps per
-  // epoch, an update every 4096 actions, minibatch 512, 8 epochs; Adam.
-  walkgen::PpoSettings s = walkgen::point_goal_ppo_settings();
-  s.seed = o.seed;
   walkgen::PointGoalSettings env_settings;  // test mode: no step budget (the thesis)
   walkgen::PointGoalSettings train_settings = env_settings;
   train_settings.max_steps = 200;
-  const int epochs = o.epochs > 0 ? o.epochs : 50;
-  Options opt = o;
-  opt.epochs = epochs;
-  opt.steps = o.steps > 0 ? o.steps : 10000;
-  const int E = std::max(1, o.envs);
+  const int E = local_envs(o);
+  walkgen::PpoSettings s = o.cfg.ppo;
+  s.seed = o.cfg.run.seed;
   walkgen::TorchPpo ppo =
       o.policy.empty() ? walkgen::TorchPpo(4, 2, s) : walkgen::TorchPpo::load(o.policy, s);
   if (o.policy.empty()) {
+    ppo.set_communicator(o.communicator);
     std::vector<walkgen::PointGoalEnv> envs;
-    for (int e = 0; e < E; ++e) envs.emplace_back(train_settings, o.seed * 1000 + e);
-    walkgen::StepPool pool(1);  // the benchmark's step is cheaper than a thread hand-off
+    for (int e = 0; e < E; ++e) envs.emplace_back(train_settings, 0);  // seeded by the trainer
+    walkgen::StepPool pool(o.cfg.run.threads);
     // Validation: test mode (policy mean) for 2000 steps on goals apart from the test's.
     walkgen::PointGoalSettings validation_settings = env_settings;
     validation_settings.max_steps = 200;
     const auto validate = [&]() {
-      walkgen::PointGoalEnv env(validation_settings, 555);
+      walkgen::PointGoalEnv env(validation_settings, o.cfg.run.validation_seed);
       const auto t = walkgen::evaluate_steps(ppo, env, 2000);
       return double(t.wins) - 10.0 * t.losses - t.truncations;
     };
-    train(ppo, envs, std::max(1, 4096 / E), pool, opt, o.out + "/ppo_benchmark.pt", validate);
+    if (!train(ppo, envs, pool, o, o.out + "/ppo_benchmark.pt", validate)) return 0;
   }
+  if (!o.lead()) return 0;
   // Test mode: the policy mean, R runs of 10 000 steps.
   std::ofstream test(o.out + "/test_benchmark.csv");
   test << "run,steps,wins,losses,mean_reward\n";
   double wins = 0, wins_sq = 0;
   int losses = 0;
   for (int r = 0; r < o.test_runs; ++r) {
-    walkgen::PointGoalEnv env(env_settings, 7777 + r);
+    walkgen::PointGoalEnv env(env_settings, o.cfg.run.evaluation_seed + r);
     const auto t = walkgen::evaluate_steps(ppo, env, 10000);
     test << r << ',' << t.steps << ',' << t.wins << ',' << t.losses << ',' << t.mean_reward << '\n';
     wins += t.wins;
@@ -180,34 +313,34 @@ int run_benchmark(const Options& o) {
 }
 
 int run_nmpc(const Options& o) {
-  // Thesis §11.2.2: 64-64 tanh networks, ε = 0.2, c1 = 0.5, Adam; minibatches over a rollout.
-  walkgen::PpoSettings s = walkgen::nmpc_goal_ppo_settings();
-  s.seed = o.seed;
   walkgen::NmpcGoalSettings env_settings;
   env_settings.obstacles = o.obstacles;
   if (o.obstacles > 0) {
     env_settings.goal_min_distance = 1.0;
     env_settings.goal_max_distance = 2.0;
   }
-  Options opt = o;
-  opt.epochs = o.epochs > 0 ? o.epochs : 30;
-  opt.steps = o.steps > 0 ? o.steps : 8192;
-  const int E = std::max(1, o.envs);
+  const int E = local_envs(o);
   using Env = walkgen::NmpcGoalEnv<16>;
-  walkgen::StepPool pool(std::max(1, o.threads));
+  walkgen::StepPool pool(o.cfg.run.threads);
   const int obs_size = 2 + 3 * o.obstacles;
+  walkgen::PpoSettings s = o.cfg.ppo;
+  s.seed = o.cfg.run.seed;
   walkgen::TorchPpo ppo =
       o.policy.empty() ? walkgen::TorchPpo(obs_size, 2, s) : walkgen::TorchPpo::load(o.policy, s);
   if (o.policy.empty()) {
+    ppo.set_communicator(o.communicator);
     std::vector<Env> envs;
     envs.reserve(E);
-    for (int e = 0; e < E; ++e) envs.emplace_back(env_settings, o.seed * 1000 + e);
-    train(ppo, envs, 256, pool, opt, o.out + "/ppo_" + env_name(o) + ".pt");
+    for (int e = 0; e < E; ++e) envs.emplace_back(env_settings, 0);  // seeded by the trainer
+    if (!train(ppo, envs, pool, o, o.out + "/ppo_" + env_name(o) + ".pt")) return 0;
   }
+  if (!o.lead()) return 0;
+  const int test_envs = std::max(1, o.cfg.run.envs);
   // Held-out goals: drawn by an environment seeded apart from the training ones.
   std::vector<Env> envs;
-  envs.reserve(E);
-  for (int e = 0; e < E; ++e) envs.emplace_back(env_settings, 900000 + e);
+  envs.reserve(test_envs);
+  for (int e = 0; e < test_envs; ++e)
+    envs.emplace_back(env_settings, o.cfg.run.evaluation_seed + e);
   std::vector<walkgen::NmpcGoalTask> tasks;
   for (int g = 0; g < o.test_goals; ++g) tasks.push_back(envs[0].sample_task());
   std::vector<double> clearance(tasks.size(), 0.0);
@@ -275,33 +408,136 @@ int run_nmpc(const Options& o) {
   return 0;
 }
 
+// The thesis's settings of each environment (docs/learning.md), before --config and options.
+walkgen::PpoConfig defaults_for(const std::string& env) {
+  walkgen::PpoConfig c;
+  if (env == "benchmark") {
+    // §11.2.1: 16-32 ReLU, ε = 0.2, c1 = 0.5, minibatch 512, 8 epochs; an update every 4096
+    // actions (8 × 512); 10 000 steps per epoch, rounded up to whole updates: 3, 12 288 steps.
+    c.ppo = walkgen::point_goal_ppo_settings();
+    c.run.epochs = 50;
+    c.run.steps = 10000;
+    c.run.rollout_steps = 512;
+    c.run.threads = 1;  // the benchmark's step is cheaper than a thread hand-off
+    c.run.evaluation_seed = 7777;
+  } else {
+    // §11.2.2: 64-64 tanh, ε = 0.2, c1 = 0.5, Adam; 8 × 256 steps per update, 4 per epoch.
+    c.ppo = walkgen::nmpc_goal_ppo_settings();
+    c.run.epochs = 30;
+    c.run.steps = 8192;
+    c.run.rollout_steps = 256;
+    c.run.threads = 2;
+    c.run.evaluation_seed = 900000;
+  }
+  return c;
+}
+
+std::string config_yaml(const walkgen::PpoConfig& c) {
+  std::ostringstream y;
+  const auto list = [](const std::vector<std::int64_t>& v) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
+    return s + "]";
+  };
+  y.precision(17);
+  y << "# the settings of this run (examples/ppo_train --config reads this file back)\nppo:\n"
+    << "  actor_hidden: " << list(c.ppo.actor_hidden)
+    << "\n  critic_hidden: " << list(c.ppo.critic_hidden)
+    << "\n  activation: " << walkgen::to_string(c.ppo.activation)
+    << "\n  initial_std: " << c.ppo.initial_std << "\n  learning_rate: " << c.ppo.learning_rate
+    << "\n  gamma: " << c.ppo.gamma << "\n  lambda: " << c.ppo.lambda << "\n  clip: " << c.ppo.clip
+    << "\n  value_coef: " << c.ppo.value_coef << "\n  entropy_coef: " << c.ppo.entropy_coef
+    << "\n  epochs: " << c.ppo.epochs << "\n  minibatch: " << c.ppo.minibatch
+    << "\n  max_grad_norm: " << c.ppo.max_grad_norm << "\n  target_kl: " << c.ppo.target_kl
+    << "\n  reward_scale: " << c.ppo.reward_scale
+    << "\n  normalize_advantages: " << (c.ppo.normalize_advantages ? "true" : "false")
+    << "\nrun:\n  epochs: " << c.run.epochs << "\n  steps: " << c.run.steps
+    << "\n  envs: " << c.run.envs << "\n  rollout_steps: " << c.run.rollout_steps
+    << "\n  threads: " << c.run.threads << "\n  seed: " << c.run.seed
+    << "\n  validation_seed: " << c.run.validation_seed
+    << "\n  evaluation_seed: " << c.run.evaluation_seed
+    << "\n  checkpoint_every: " << c.run.checkpoint_every << "\n";
+  return y.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Options o;
+  walkgen::PpoRunSettings cli;  // values of the run options given on the command line
   CLI::App app{
       "Trains and tests PPO agents (walkgen::TorchPpo) in the benchmarking or the NMPC "
-      "environment (thesis §11.2)",
+      "environment (thesis §11.2), on one process or data-parallel over several (c10d Gloo)",
       "ppo_train"};
   walkgen_examples::cli_defaults(app);
   app.add_option("env", o.env, "benchmark (§11.2.1) or nmpc (§11.2.2)")
       ->required()
       ->check(CLI::IsMember({"benchmark", "nmpc"}));
-  app.add_option("--epochs", o.epochs, "training epochs, >= 1 (default: benchmark 50, nmpc 30)")
-      ->transform(walkgen_examples::decimal_at_least<int>(1))
-      ->default_str("");
-  app.add_option("--steps", o.steps, "steps per epoch, >= 1 (default: benchmark 10000, nmpc 8192)")
-      ->transform(walkgen_examples::decimal_at_least<long>(1))
-      ->default_str("");
-  app.add_option("--seed", o.seed, "seed of the policy and the training environments")
-      ->transform(walkgen_examples::decimal_at_least<std::uint64_t>(0));
-  app.add_option("--out", o.out, "folder of the CSV files and the policy (ppo_<env>.pt)");
-  app.add_option("--envs", o.envs, "environments stepped at once, >= 1")
-      ->transform(walkgen_examples::decimal_at_least<int>(1));
-  app.add_option("--threads", o.threads, "nmpc: threads that step the environments, >= 1")
-      ->transform(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--config", o.config,
+                 "YAML file of PPO settings (ppo:) and the run (run:), see docs/learning.md; "
+                 "options given here override it")
+      ->check(CLI::ExistingFile);
+  auto* epochs = app.add_option("--epochs", cli.epochs,
+                                "training epochs, >= 1 (default: benchmark 50, nmpc 30)")
+                     ->transform(walkgen_examples::decimal_at_least<int>(1))
+                     ->default_str("");
+  auto* steps = app.add_option("--steps", cli.steps,
+                               "steps per epoch over all processes, >= 1, rounded up to whole "
+                               "updates (default: benchmark 10000, nmpc 8192)")
+                    ->transform(walkgen_examples::decimal_at_least<long>(1))
+                    ->default_str("");
+  auto* seed = app.add_option("--seed", cli.seed,
+                              "seed of the weights, the environments, the exploration noise and "
+                              "the minibatch order (default 1)")
+                   ->transform(walkgen_examples::decimal_at_least<std::uint64_t>(0))
+                   ->default_str("");
+  app.add_option("--out", o.out, "folder of the CSV files, the policy and the checkpoint");
+  auto* envs = app.add_option("--envs", cli.envs,
+                              "environments over all processes, a multiple of --world-size "
+                              "(default 8)")
+                   ->transform(walkgen_examples::decimal_at_least<int>(1))
+                   ->default_str("");
+  auto* threads = app.add_option("--threads", cli.threads,
+                                 "threads that step a process's environments (default: "
+                                 "benchmark 1, nmpc 2)")
+                      ->transform(walkgen_examples::decimal_at_least<int>(1))
+                      ->default_str("");
   app.add_option("--obstacles", o.obstacles, "nmpc: circular obstacles per episode, >= 0")
       ->transform(walkgen_examples::decimal_at_least<int>(0));
+  auto* every = app.add_option("--checkpoint-every", cli.checkpoint_every,
+                               "epochs between checkpoints, 0: none (default 1)")
+                    ->transform(walkgen_examples::decimal_at_least<int>(0))
+                    ->default_str("");
+  app.add_flag("--resume", o.resume,
+               "continue from <out>/checkpoint_<env>.pt (same settings): the result equals the "
+               "uninterrupted run's");
+  app.add_option("--stop-after", o.stop_after,
+                 "stop after this many epochs of this invocation, as an interruption would "
+                 "(0: run to the end)")
+      ->transform(walkgen_examples::decimal_at_least<int>(0));
+#if WALKGEN_HAS_DISTRIBUTED
+  try {  // torchrun's variables give the defaults
+    const walkgen::DistributedSettings d = walkgen::distributed_settings_from_environment();
+    o.world_size = d.world_size;
+    o.rank = d.rank;
+    o.master_addr = d.master_addr;
+    o.master_port = d.master_port;
+  } catch (const std::exception& e) {
+    std::cerr << "ppo_train: " << e.what() << '\n';
+    return 2;
+  }
+  app.add_option("--world-size", o.world_size,
+                 "processes of a data-parallel run (c10d Gloo; default: $WORLD_SIZE, else 1)")
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
+  app.add_option("--rank", o.rank, "this process, 0 ... world size - 1 (default: $RANK, else 0)")
+      ->transform(walkgen_examples::decimal_at_least<int>(0));
+  app.add_option("--master-addr", o.master_addr,
+                 "where the processes meet: rank 0's address (default: $MASTER_ADDR, else "
+                 "127.0.0.1)");
+  app.add_option("--master-port", o.master_port,
+                 "rank 0's TCP port for the meeting (default: $MASTER_PORT, else 29500)")
+      ->transform(walkgen_examples::decimal_at_least<int>(1));
+#endif
   app.add_option("--policy", o.policy,
                  "test this saved policy instead of training one (default: none)")
       ->check(CLI::ExistingFile);
@@ -310,19 +546,50 @@ int main(int argc, char** argv) {
   app.add_option("--test-goals", o.test_goals, "nmpc: held-out test goals, >= 1")
       ->transform(walkgen_examples::decimal_at_least<int>(1));
   app.add_flag("--plot", o.plot, "draw the PNGs (python/plot_learning.py)");
-  app.add_flag("--quiet", o.quiet, "no line per epoch");
+  app.add_flag("--quiet", o.quiet, "no progress output");
   WALKGEN_CLI_PARSE(app, argc, argv);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines also when piped to a file
   torch::set_num_threads(1);  // small networks: intra-op threads cost more than they give
   int rc = 0;
   try {
+    o.cfg = defaults_for(o.env);
+    if (!o.config.empty()) o.cfg = walkgen::load_ppo_config(o.config, o.cfg);
+    if (epochs->count() > 0) o.cfg.run.epochs = cli.epochs;
+    if (steps->count() > 0) o.cfg.run.steps = cli.steps;
+    if (seed->count() > 0) o.cfg.run.seed = cli.seed;
+    if (envs->count() > 0) o.cfg.run.envs = cli.envs;
+    if (threads->count() > 0) o.cfg.run.threads = cli.threads;
+    if (every->count() > 0) o.cfg.run.checkpoint_every = cli.checkpoint_every;
+    walkgen::validate(o.cfg.run);
+    walkgen::check_argument(o.rank < o.world_size, "--rank",
+                            "a rank below the world size " + std::to_string(o.world_size), o.rank);
+    (void)local_envs(o);  // --envs splits over the processes: checked before they meet
     std::filesystem::create_directories(o.out);
+#if WALKGEN_HAS_DISTRIBUTED
+    std::unique_ptr<walkgen::TorchGlooCommunicator> group;
+    if (o.world_size > 1 && o.policy.empty()) {
+      walkgen::DistributedSettings d;
+      d.rank = o.rank;
+      d.world_size = o.world_size;
+      d.master_addr = o.master_addr;
+      d.master_port = o.master_port;
+      group = std::make_unique<walkgen::TorchGlooCommunicator>(d);
+      o.communicator = group.get();
+    }
+#endif
+    if (o.lead() && o.policy.empty()) {
+      const std::string path = o.out + "/config_" + env_name(o) + ".yaml";
+      walkgen::write_atomically(path, [&](const std::string& temp) {
+        std::ofstream f(temp);
+        f << config_yaml(o.cfg);
+      });
+    }
     rc = o.env == "benchmark" ? run_benchmark(o) : run_nmpc(o);
   } catch (const std::exception& e) {
     std::cerr << "ppo_train: " << e.what() << '\n';
     return 1;
   }
-  if (o.plot) {
+  if (o.plot && o.lead()) {
     const std::string cmd =
         "/usr/bin/python3 " +
         walkgen_examples::shell_quote(WALKGEN_SOURCE_DIR "/python/plot_learning.py") + " " +

@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libgtest-dev libgmock-dev libbenchmark-dev libyaml-cpp-dev
   libtinyxml2-dev libmujoco-dev libceres-dev liborocos-kdl-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libopencv-dev libopencv-contrib-dev
-  libtorch-dev python3-torch
+  libtorch-dev python3-torch libgloo-dev
   libcli11-dev shellcheck
   clang libclang-rt-14-dev
   ffmpeg tmux clang-format python3-numpy python3-matplotlib

@@ -294,7 +294,7 @@ TEST(TorchPpo, UpdateReportsHowItEnded) {
   }
 }
 
-// Thesis §11.2.1, shortened: 20 epochs of 8192 steps, seeded. Learning is asserted as a rise of
+// Thesis §11.2.1, shortened: 30 epochs of 8192 steps, seeded. Learning is asserted as a rise of
 // the mean reward per step from the first epoch to the best of the last three by at least 0.1
 // (a random policy makes ≈ 0.01 per step, a good one ≈ 0.3), and test-mode wins.
 TEST(TorchPpo, LearnsTheBenchmarkEnvironment) {
@@ -308,8 +308,8 @@ TEST(TorchPpo, LearnsTheBenchmarkEnvironment) {
   walkgen::TorchPpo ppo(4, 2, s);
   walkgen::PpoTrainer<walkgen::PointGoalEnv> trainer(ppo, envs, 512);
   std::vector<double> rewards;
-  for (int k = 0; k < 20; ++k) rewards.push_back(trainer.run_epoch(8192).mean_reward);
-  const double late = std::max({rewards[17], rewards[18], rewards[19]});
+  for (int k = 0; k < 30; ++k) rewards.push_back(trainer.run_epoch(8192).mean_reward);
+  const double late = std::max({rewards[27], rewards[28], rewards[29]});
   std::printf("mean reward per step: first epoch %.4f, best of the last three %.4f\n", rewards[0],
               late);
   EXPECT_GT(late, rewards[0] + 0.1);
@@ -318,6 +318,100 @@ TEST(TorchPpo, LearnsTheBenchmarkEnvironment) {
   std::printf("test mode, 2000 steps: %d wins, %d losses\n", t.wins, t.losses);
   EXPECT_GT(t.wins, 20);
   EXPECT_EQ(t.losses, 0);
+}
+
+// The weights of a policy, flattened (for exact comparisons).
+std::vector<float> weights(walkgen::TorchPpo& ppo) {
+  std::vector<float> out;
+  for (const auto& p : ppo.model()->parameters()) {
+    const torch::Tensor t = p.detach().contiguous().reshape({-1});
+    out.insert(out.end(), t.data_ptr<float>(), t.data_ptr<float>() + t.numel());
+  }
+  return out;
+}
+
+TEST(PpoTrainer, ResumedFromACheckpointContinuesExactly) {
+  torch::set_num_threads(1);
+  walkgen::PpoSettings s = walkgen::point_goal_ppo_settings();
+  s.seed = 3;
+  walkgen::PointGoalSettings es;
+  es.max_steps = 200;
+  const auto make_envs = [&] {
+    std::vector<walkgen::PointGoalEnv> envs;
+    for (int e = 0; e < 4; ++e) envs.emplace_back(es, 0);
+    return envs;
+  };
+  const std::string path = temp_path("checkpoint.pt");
+  // the uninterrupted run: 3 epochs, a checkpoint after the second
+  std::vector<walkgen::PointGoalEnv> envs = make_envs();
+  walkgen::TorchPpo ppo(4, 2, s);
+  walkgen::PpoTrainer<walkgen::PointGoalEnv> trainer(ppo, envs, 128);
+  (void)trainer.run_epoch(1024);
+  (void)trainer.run_epoch(1024);
+  ppo.save_checkpoint(path, {{"epoch", 2.0}, {"note", 0.5}});
+  const std::vector<float> at_checkpoint = weights(ppo);
+  const walkgen::PpoEpoch third = trainer.run_epoch(1024);
+  const std::vector<float> uninterrupted = weights(ppo);
+  EXPECT_EQ(ppo.updates(), 3 * 2);
+  // a new process: other initial weights (another seed's), then the checkpoint
+  walkgen::PpoSettings other = s;
+  other.seed = 99;
+  std::vector<walkgen::PointGoalEnv> envs2 = make_envs();
+  walkgen::TorchPpo resumed(4, 2, other);
+  EXPECT_NE(weights(resumed), at_checkpoint);
+  const std::vector<double> counters = resumed.resume_checkpoint(path, {"epoch", "note"});
+  ASSERT_EQ(counters.size(), 2u);
+  EXPECT_EQ(counters[0], 2.0);
+  EXPECT_EQ(counters[1], 0.5);
+  EXPECT_EQ(weights(resumed), at_checkpoint);
+  EXPECT_EQ(resumed.updates(), 4);
+  walkgen::PpoSettings same = s;  // the minibatch order comes from the seed in the settings
+  walkgen::TorchPpo again(4, 2, same);
+  (void)again.resume_checkpoint(path);
+  walkgen::PpoTrainer<walkgen::PointGoalEnv> trainer2(again, envs2, 128);
+  trainer2.set_epoch(static_cast<int>(counters[0]));
+  const walkgen::PpoEpoch third_again = trainer2.run_epoch(1024);
+  EXPECT_EQ(third_again.epoch, 3);
+  EXPECT_EQ(third_again.wins, third.wins);
+  EXPECT_EQ(third_again.mean_reward, third.mean_reward);
+  EXPECT_EQ(weights(again), uninterrupted);  // bit for bit: Adam's moments came back too
+}
+
+TEST(PpoTrainer, EpochsAreWholeUpdates) {
+  walkgen::PpoSettings s = walkgen::point_goal_ppo_settings();
+  std::vector<walkgen::PointGoalEnv> envs(2);
+  walkgen::TorchPpo ppo(4, 2, s);
+  walkgen::PpoTrainer<walkgen::PointGoalEnv> trainer(ppo, envs, 100);
+  EXPECT_EQ(trainer.updates_per_epoch(1), 1);
+  EXPECT_EQ(trainer.updates_per_epoch(200), 1);
+  EXPECT_EQ(trainer.updates_per_epoch(201), 2);
+  const walkgen::PpoEpoch ep = trainer.run_epoch(201);
+  EXPECT_EQ(ep.updates, 2);
+  EXPECT_EQ(ep.steps, 400);
+  EXPECT_THROW(trainer.set_epoch(-1), walkgen::invalid_argument);
+}
+
+TEST(TorchPpo, CheckpointErrorsNameTheFile) {
+  walkgen::PpoSettings s;
+  walkgen::TorchPpo ppo(4, 2, s);
+  const std::string path = temp_path("checkpoint_errors.pt");
+  ppo.save_checkpoint(path, {{"epoch", 1.0}});
+  walkgen::TorchPpo other(5, 2, s);
+  try {
+    (void)other.resume_checkpoint(path);
+    ADD_FAILURE() << "a checkpoint of other sizes was accepted";
+  } catch (const walkgen::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("4 and 2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)ppo.resume_checkpoint(path, {"no_such_counter"}), walkgen::invalid_argument);
+  EXPECT_THROW((void)ppo.resume_checkpoint(temp_path("no_such_checkpoint.pt")),
+               walkgen::invalid_argument);
+  EXPECT_THROW(ppo.save_checkpoint(temp_path("no_such_folder/checkpoint.pt")),
+               walkgen::invalid_argument);
+  // the policy file is not a checkpoint
+  ppo.save(temp_path("policy_not_checkpoint.pt"));
+  EXPECT_THROW((void)ppo.resume_checkpoint(temp_path("policy_not_checkpoint.pt")),
+               walkgen::invalid_argument);
 }
 
 }  // namespace

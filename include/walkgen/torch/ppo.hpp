@@ -26,100 +26,18 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "walkgen/core/atomic_file.hpp"
 #include "walkgen/core/exceptions.hpp"
 #include "walkgen/core/math.hpp"
+#include "walkgen/learning/ppo_settings.hpp"
 
 namespace walkgen {
-
-/// Activation of the hidden layers (the output of the policy mean is always tanh).
-enum class TorchActivation : std::int64_t {
-  relu = 0,  ///< thesis §11.2.1 (benchmark environment)
-  tanh = 1,  ///< thesis §11.2.2 (NMPC environment)
-};
-
-/// "relu" or "tanh", e.g. for logs; "unknown" for a value out of range (a policy file's
-/// `activation` attribute is read into this enum).
-constexpr const char* to_string(TorchActivation activation) noexcept {
-  switch (activation) {
-    case TorchActivation::relu:
-      return "relu";
-    case TorchActivation::tanh:
-      return "tanh";
-  }
-  return "unknown";
-}
-
-/// PPO hyper-parameters. Defaults: the common PPO choices; thesis values per environment are
-/// in the examples (examples/ppo_train.cpp) and docs/learning.md.
-struct PpoSettings {
-  std::vector<std::int64_t> actor_hidden{64, 64};   ///< hidden layer sizes of μ_θ
-  std::vector<std::int64_t> critic_hidden{64, 64};  ///< hidden layer sizes of V_θ
-  TorchActivation activation = TorchActivation::tanh;
-  double initial_std = 0.5;     ///< σ at the start (the policy's exploration)
-  double learning_rate = 3e-4;  ///< Adam's step size
-  double gamma = 0.99;          ///< discount γ (eq. 4.15)
-  double lambda = 0.95;         ///< GAE λ (eq. 4.15)
-  double clip = 0.2;            ///< ε of the clipped surrogate (eq. 4.16)
-  double value_coef = 0.5;      ///< c1 of eq. 4.17
-  double entropy_coef = 0.0;    ///< c2 of eq. 4.17
-  int epochs = 8;               ///< K: passes over a rollout per update (algorithm 1)
-  int minibatch = 512;          ///< M: samples per gradient step
-  double max_grad_norm = 0.5;   ///< global gradient norm clip; ≤ 0 disables it
-  /// Early stop of an update's epochs once the mean KL estimate between the rollout's policy
-  /// and the current one exceeds this (a guard against the collapse of a too large step);
-  /// ≤ 0 disables it.
-  double target_kl = 0.02;
-  double reward_scale = 1.0;         ///< rewards are multiplied by this before GAE (value scale)
-  bool normalize_advantages = true;  ///< advantages to zero mean, unit std per update
-  std::uint64_t seed = 0;            ///< torch::manual_seed (weights, sampling, shuffling)
-};
-
-/// How an update ended.
-enum class PpoUpdateStatus : std::uint8_t {
-  updated,  ///< every epoch ran over every minibatch
-  /// the mean KL estimate of a minibatch exceeded PpoSettings::target_kl: that minibatch's
-  /// step and the rest of the update were skipped (PpoUpdateResult::steps were taken)
-  kl_stopped,
-};
-
-/// "updated" or "kl_stopped", e.g. for logs; "unknown" for a value out of range.
-constexpr const char* to_string(PpoUpdateStatus status) noexcept {
-  switch (status) {
-    case PpoUpdateStatus::updated:
-      return "updated";
-    case PpoUpdateStatus::kl_stopped:
-      return "kl_stopped";
-  }
-  return "unknown";
-}
-
-/// Checks PPO's hyper-parameters (TorchPpo's constructor and load() call this).
-/// @throws walkgen::invalid_argument naming the first bad field.
-inline void validate(const PpoSettings& s) {
-  for (auto h : s.actor_hidden) check_argument(h >= 1, "PpoSettings.actor_hidden", ">= 1", h);
-  for (auto h : s.critic_hidden) check_argument(h >= 1, "PpoSettings.critic_hidden", ">= 1", h);
-  check_argument(s.activation == TorchActivation::relu || s.activation == TorchActivation::tanh,
-                 "PpoSettings.activation", "relu (0) or tanh (1)",
-                 static_cast<std::int64_t>(s.activation));
-  check_positive("PpoSettings.initial_std", s.initial_std);
-  check_positive("PpoSettings.learning_rate", s.learning_rate);
-  check_argument(s.gamma > 0.0 && s.gamma <= 1.0, "PpoSettings.gamma", "a value in (0, 1]",
-                 s.gamma);
-  check_argument(s.lambda >= 0.0 && s.lambda <= 1.0, "PpoSettings.lambda", "a value in [0, 1]",
-                 s.lambda);
-  check_positive("PpoSettings.clip", s.clip);
-  check_non_negative("PpoSettings.value_coef", s.value_coef);
-  check_argument(std::isfinite(s.entropy_coef), "PpoSettings.entropy_coef", "finite",
-                 s.entropy_coef);
-  check_argument(s.epochs >= 1, "PpoSettings.epochs", "at least 1", s.epochs);
-  check_argument(s.minibatch >= 1, "PpoSettings.minibatch", "at least 1", s.minibatch);
-  check_positive("PpoSettings.reward_scale", s.reward_scale);
-}
 
 /// One update's outcome and statistics (means over its minibatches).
 struct PpoUpdateResult {
@@ -246,6 +164,31 @@ class TorchActorCriticImpl : public torch::nn::Module {
 };
 TORCH_MODULE(TorchActorCritic);
 
+/// What data-parallel PPO needs from the processes of a run: sums over all processes and a
+/// broadcast from process 0. walkgen::TorchGlooCommunicator (walkgen/torch/distributed.hpp)
+/// implements it on PyTorch's c10d with Gloo; a test may implement it in memory.
+class PpoCommunicator {
+ public:
+  virtual ~PpoCommunicator() = default;
+  [[nodiscard]] virtual int rank() const = 0;        ///< this process, 0 … world_size() − 1
+  [[nodiscard]] virtual int world_size() const = 0;  ///< the number of processes
+  /// Replaces `tensor` (contiguous, CPU) with its sum over all processes.
+  virtual void allreduce_sum(torch::Tensor& tensor) = 0;
+  /// Replaces `tensor` (contiguous, CPU) with process 0's.
+  virtual void broadcast(torch::Tensor& tensor) = 0;
+};
+
+/// A 64-bit mix of a seed and two counters (splitmix64's finaliser over their sum): the seed of
+/// environment `index` in epoch `epoch`, of its exploration noise, of an update's minibatch
+/// order. Equal inputs give equal seeds on every machine, so a run's randomness depends on the
+/// seed and the counters only, not on how the environments are spread over processes.
+constexpr std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) noexcept {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (a + 1) + 0xD1B54A32D192ED03ull * (b + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
 /// PPO: acting, updating (algorithm 1), saving and loading the policy.
 class TorchPpo {
  public:
@@ -267,15 +210,23 @@ class TorchPpo {
   double std() const { return torch::exp(model_->log_std()).mean().item<double>(); }
 
   /// Actions for a batch of observations (obs: batch × O, row-major): sampled from π_θ, or
-  /// the mean μ_θ(s) when deterministic (test mode). log_prob and value may be null.
+  /// the mean μ_θ(s) when deterministic (test mode). log_prob and value may be null. `noise`
+  /// (batch × A standard normal draws, e.g. from each environment's own generator, as
+  /// walkgen::PpoTrainer does) gives the sample μ + σ·noise; when null, torch's global generator
+  /// draws it.
   void act(const float* obs, int batch, bool deterministic, float* action,
-           float* log_prob = nullptr, float* value = nullptr) {
+           float* log_prob = nullptr, float* value = nullptr, const float* noise = nullptr) {
     torch::NoGradGuard no_grad;
     const torch::Tensor o =
         torch::from_blob(const_cast<float*>(obs), {batch, obs_}, torch::kFloat32);
     const torch::Tensor mu = model_->mean(o);
     torch::Tensor a = mu;
-    if (!deterministic) a = mu + torch::exp(model_->log_std()) * torch::randn_like(mu);
+    if (!deterministic) {
+      const torch::Tensor z = noise != nullptr ? torch::from_blob(const_cast<float*>(noise),
+                                                                  {batch, act_}, torch::kFloat32)
+                                               : torch::randn_like(mu);
+      a = mu + torch::exp(model_->log_std()) * z;
+    }
     a = a.contiguous();
     std::memcpy(action, a.data_ptr<float>(),
                 sizeof(float) * static_cast<std::size_t>(batch * act_));
@@ -294,8 +245,33 @@ class TorchPpo {
     std::memcpy(value, v.data_ptr<float>(), sizeof(float) * static_cast<std::size_t>(batch));
   }
 
+  /// Makes this policy one process of a data-parallel run (null: alone again): process 0's
+  /// weights are broadcast at once, and every update then sums the gradients and the
+  /// statistics over the processes, so all of them keep the same weights. Each process passes
+  /// update() the rollout of its own environments, all of the same size.
+  void set_communicator(PpoCommunicator* communicator) {
+    communicator_ = communicator;
+    if (communicator_ == nullptr) return;
+    torch::NoGradGuard no_grad;
+    for (auto& p : model_->parameters()) {
+      torch::Tensor t = p.detach().contiguous();
+      communicator_->broadcast(t);
+      p.copy_(t);
+    }
+  }
+  [[nodiscard]] PpoCommunicator* communicator() const { return communicator_; }
+  /// Updates done so far (the counter that seeds each update's minibatch order).
+  [[nodiscard]] std::int64_t updates() const { return updates_; }
+
   /// One PPO update on a rollout (algorithm 1): GAE, then `epochs` passes over shuffled
   /// minibatches of L = −L^CLIP + c1 L^VF − c2 S (eq. 4.16–4.17) with Adam.
+  ///
+  /// The minibatches are drawn from the samples of all processes in an order from
+  /// mix_seed(seed, updates()); each process computes the loss terms of its own samples
+  /// divided by the minibatch's size, and the gradients are summed over the processes; the
+  /// advantages are normalised with the statistics of all processes and the KL early stop is
+  /// decided on the whole minibatch's mean: K processes with E environments each update as one
+  /// process with K·E environments would (to float rounding).
   /// @throws walkgen::invalid_argument if the rollout's sizes do not match the policy.
   PpoUpdateResult update(const PpoRollout& r) {
     check_argument(r.observation_size == obs_ && r.action_size == act_ && r.steps > 0 && r.envs > 0,
@@ -315,17 +291,51 @@ class TorchPpo {
     const torch::Tensor old_log_prob = tensor(r.log_probs, {n});
     torch::Tensor advantage = tensor(adv, {n});
     const torch::Tensor target = tensor(ret, {n});
-    if (s_.normalize_advantages && n > 1)
-      advantage = (advantage - advantage.mean()) / (advantage.std() + 1e-8);
+    const int world = communicator_ != nullptr ? communicator_->world_size() : 1;
+    if (s_.normalize_advantages) {
+      // mean and unbiased std over the samples of all processes, summed in double
+      double sums[3] = {0.0, 0.0, static_cast<double>(n)};
+      for (const float a : adv) {
+        sums[0] += a;
+        sums[1] += static_cast<double>(a) * a;
+      }
+      sum_over_processes(sums, 3);
+      if (sums[2] > 1.0) {
+        const double mean = sums[0] / sums[2];
+        const double var = std::max(0.0, (sums[1] - sums[2] * mean * mean) / (sums[2] - 1.0));
+        advantage = (advantage - mean) / (std::sqrt(var) + 1e-8);
+      }
+    }
+    // Minibatches are drawn over the samples of all processes: global sample g = t·E·W + k
+    // (k = rank·E + e) in an order from mix_seed(seed, updates()); each process takes those of
+    // its environments. Losses are sums over a process's share divided by the minibatch's
+    // size, so the sum of the processes' gradients is the gradient of the whole minibatch.
+    const std::int64_t E = r.envs, T = r.steps, EW = E * world, N = T * EW;
+    const std::int64_t M = std::min<std::int64_t>(s_.minibatch, N);
+    const std::int64_t rank = communicator_ != nullptr ? communicator_->rank() : 0;
 
     PpoUpdateResult out;
     int batches = 0;
     bool stop = false;
+    std::mt19937_64 order_rng(mix_seed(s_.seed, 0x5EEDull, static_cast<std::uint64_t>(updates_)));
+    std::vector<std::int64_t> order(static_cast<std::size_t>(N));
+    std::vector<std::int64_t> index;
+    index.reserve(static_cast<std::size_t>(M));
     for (int epoch = 0; epoch < s_.epochs && !stop; ++epoch) {
-      const torch::Tensor perm = torch::randperm(n, torch::kLong);
-      for (std::int64_t start = 0; start < n; start += s_.minibatch) {
+      for (std::int64_t g = 0; g < N; ++g) order[static_cast<std::size_t>(g)] = g;
+      for (std::int64_t i = N - 1; i > 0; --i)  // Fisher–Yates with the run's own generator
+        std::swap(order[static_cast<std::size_t>(i)],
+                  order[static_cast<std::size_t>(order_rng() % static_cast<std::uint64_t>(i + 1))]);
+      for (std::int64_t start = 0; start < N; start += M) {
+        const std::int64_t count = std::min(start + M, N) - start;
+        index.clear();
+        for (std::int64_t k = start; k < start + count; ++k) {
+          const std::int64_t g = order[static_cast<std::size_t>(k)], t = g / EW, c = g % EW;
+          if (c / E == rank) index.push_back(t * E + c % E);
+        }
+        const double inv = 1.0 / static_cast<double>(count);
         const torch::Tensor idx =
-            perm.slice(0, start, std::min<std::int64_t>(start + s_.minibatch, n));
+            torch::from_blob(index.data(), {static_cast<std::int64_t>(index.size())}, torch::kLong);
         const torch::Tensor o = obs.index_select(0, idx);
         const torch::Tensor a = act.index_select(0, idx);
         const torch::Tensor A = advantage.index_select(0, idx);
@@ -334,33 +344,40 @@ class TorchPpo {
         const torch::Tensor ratio = torch::exp(log_ratio);
         const torch::Tensor surrogate =
             torch::min(ratio * A, torch::clamp(ratio, 1.0 - s_.clip, 1.0 + s_.clip) * A);
-        const torch::Tensor policy_loss = -surrogate.mean();
+        const torch::Tensor policy_loss = -surrogate.sum() * inv;
         const torch::Tensor value_loss =
-            (model_->value(o) - target.index_select(0, idx)).pow(2).mean();
-        const torch::Tensor entropy = model_->entropy();
-        const double kl = ((ratio - 1.0) - log_ratio).mean().item<double>();
-        if (s_.target_kl > 0.0 && kl > s_.target_kl) {
+            (model_->value(o) - target.index_select(0, idx)).pow(2).sum() * inv;
+        const torch::Tensor entropy = model_->entropy();  // state-independent σ
+        // the minibatch's means: each process's share, summed over the processes
+        double stats[4] = {
+            ((ratio - 1.0) - log_ratio).sum().item<double>() * inv, policy_loss.item<double>(),
+            value_loss.item<double>(),
+            ((ratio - 1.0).abs() > s_.clip).to(torch::kFloat64).sum().item<double>() * inv};
+        sum_over_processes(stats, 4);
+        if (s_.target_kl > 0.0 && stats[0] > s_.target_kl) {
           stop = true;  // this minibatch's step is not taken
           out.status = PpoUpdateStatus::kl_stopped;
           out.message = "the mean KL estimate exceeded target_kl: the update stopped early";
           break;
         }
+        const double share = static_cast<double>(index.size()) * inv;
         const torch::Tensor loss =
-            policy_loss + s_.value_coef * value_loss - s_.entropy_coef * entropy;
+            policy_loss + s_.value_coef * value_loss - s_.entropy_coef * share * entropy;
         optimizer_.zero_grad();
         loss.backward();
+        if (communicator_ != nullptr) sum_gradients();
         if (s_.max_grad_norm > 0.0)
           torch::nn::utils::clip_grad_norm_(model_->parameters(), s_.max_grad_norm);
         optimizer_.step();
-        out.policy_loss += policy_loss.item<double>();
-        out.value_loss += value_loss.item<double>();
+        out.approx_kl += stats[0];
+        out.policy_loss += stats[1];
+        out.value_loss += stats[2];
         out.entropy += entropy.item<double>();
-        out.approx_kl += kl;
-        out.clip_fraction +=
-            ((ratio - 1.0).abs() > s_.clip).to(torch::kFloat32).mean().item<double>();
+        out.clip_fraction += stats[3];
         ++batches;
       }
     }
+    ++updates_;
     out.steps = batches;
     if (batches > 0) {
       out.policy_loss /= batches;
@@ -371,6 +388,85 @@ class TorchPpo {
     }
     out.std = std();
     return out;
+  }
+
+  /// Writes a checkpoint that resume_checkpoint() continues from: the weights, Adam's state
+  /// (moments and step counts), the update counter, torch's global generator and the caller's
+  /// `counters` (e.g. the trainer's epoch, the best score so far). Replaced atomically
+  /// (walkgen::write_atomically), so a run stopped during a save keeps the previous checkpoint.
+  /// Not a policy file: save() writes those.
+  /// @throws walkgen::invalid_argument if the file cannot be written.
+  void save_checkpoint(const std::string& path,
+                       const std::vector<std::pair<std::string, double>>& counters = {}) {
+    std::ostringstream bytes;
+    try {
+      torch::serialize::OutputArchive archive;
+      for (const auto& p : model_->named_parameters()) archive.write("model." + p.key(), p.value());
+      torch::serialize::OutputArchive adam;
+      optimizer_.save(adam);
+      archive.write("optimizer", adam);
+      archive.write("updates", c10::IValue(updates_));
+      archive.write("torch_generator", at::detail::getDefaultCPUGenerator().get_state());
+      archive.write("observation_size", c10::IValue(std::int64_t(obs_)));
+      archive.write("action_size", c10::IValue(std::int64_t(act_)));
+      for (const auto& c : counters) archive.write("counter." + c.first, c10::IValue(c.second));
+      archive.save_to(bytes);
+    } catch (const c10::Error& e) {
+      throw invalid_argument(
+          detail::expected_got("TorchPpo::save_checkpoint", "a checkpoint torch can serialise",
+                               std::string("the error: ") + e.what_without_backtrace()));
+    }
+    write_bytes(path, bytes.str(), "TorchPpo::save_checkpoint");
+  }
+
+  /// Continues from a checkpoint of save_checkpoint() written by a policy of the same sizes
+  /// and settings: restores the weights, Adam's state, the update counter and torch's global
+  /// generator, and returns the value of each name in `counter_names` (in that order).
+  /// @throws walkgen::invalid_argument if the file is missing, not a checkpoint, of other
+  ///   sizes, or lacks a named counter.
+  std::vector<double> resume_checkpoint(const std::string& path,
+                                        const std::vector<std::string>& counter_names = {}) {
+    std::vector<double> counters;
+    try {
+      torch::serialize::InputArchive archive;
+      archive.load_from(path);
+      c10::IValue v;
+      archive.read("observation_size", v);
+      const std::int64_t o = v.toInt();
+      archive.read("action_size", v);
+      const std::int64_t a = v.toInt();
+      check_argument(o == obs_ && a == act_, "TorchPpo::resume_checkpoint",
+                     "a checkpoint of a policy with " + std::to_string(obs_) + " inputs and " +
+                         std::to_string(act_) + " outputs",
+                     std::to_string(o) + " and " + std::to_string(a) + " in " + path);
+      torch::NoGradGuard no_grad;
+      for (auto& p : model_->named_parameters()) {
+        torch::Tensor t;
+        archive.read("model." + p.key(), t);
+        const std::string where = "TorchPpo::resume_checkpoint: " + p.key();
+        check_argument(t.sizes() == p.value().sizes(), where.c_str(), p.value().sizes(), t.sizes());
+        p.value().copy_(t);
+      }
+      torch::serialize::InputArchive adam;
+      archive.read("optimizer", adam);
+      optimizer_.load(adam);
+      archive.read("updates", v);
+      updates_ = v.toInt();
+      torch::Tensor state;
+      archive.read("torch_generator", state);
+      at::Generator generator = at::detail::getDefaultCPUGenerator();  // shares the state
+      generator.set_state(state);
+      for (const auto& name : counter_names) {
+        check_argument(archive.try_read("counter." + name, v) && v.isDouble(),
+                       "TorchPpo::resume_checkpoint", "a counter " + name, "none in " + path);
+        counters.push_back(v.toDouble());
+      }
+    } catch (const c10::Error& e) {
+      throw invalid_argument(detail::expected_got("TorchPpo::resume_checkpoint",
+                                                  "a checkpoint written by save_checkpoint",
+                                                  path + " (" + e.what_without_backtrace() + ")"));
+    }
+    return counters;
   }
 
   /// Saves the policy as a TorchScript module: forward(x) = μ_θ(x) (the test-mode action),
@@ -408,15 +504,7 @@ class TorchPpo {
           detail::expected_got("TorchPpo::save", "a policy TorchScript can save",
                                std::string("the error: ") + e.what_without_backtrace()));
     }
-    const std::string data = bytes.str();
-    write_atomically(path, [&](const std::string& temp) {
-      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-      out.write(data.data(), static_cast<std::streamsize>(data.size()));
-      out.close();
-      check_argument(!out.fail(), "TorchPpo::save",
-                     "'" + path + "' written (" + std::to_string(data.size()) + " bytes)",
-                     "a write error", "is the disk full, the folder writable?");
-    });
+    write_bytes(path, bytes.str(), "TorchPpo::save");
   }
 
   /// Loads a policy saved by save(): sizes and layers from the file, training hyper-parameters
@@ -470,6 +558,40 @@ class TorchPpo {
       p.value().copy_(t);
     }
   }
+  // `data` to `path`, atomically (walkgen::write_atomically); `where` names the caller.
+  static void write_bytes(const std::string& path, const std::string& data, const char* where) {
+    write_atomically(path, [&](const std::string& temp) {
+      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+      out.write(data.data(), static_cast<std::streamsize>(data.size()));
+      out.close();
+      check_argument(!out.fail(), where,
+                     "'" + path + "' written (" + std::to_string(data.size()) + " bytes)",
+                     "a write error", "is the disk full, the folder writable?");
+    });
+  }
+  void sum_over_processes(double* values, int count) {
+    if (communicator_ == nullptr) return;
+    torch::Tensor t = torch::from_blob(values, {count}, torch::kFloat64).clone();
+    communicator_->allreduce_sum(t);
+    std::memcpy(values, t.data_ptr<double>(), sizeof(double) * static_cast<std::size_t>(count));
+  }
+  // one allreduce of all gradients, flattened (a parameter without a gradient counts as zero,
+  // so that every process sends the same layout)
+  void sum_gradients() {
+    std::vector<torch::Tensor> grads;
+    for (auto& p : model_->parameters()) {
+      if (!p.grad().defined()) p.mutable_grad() = torch::zeros_like(p);
+      grads.push_back(p.grad().reshape({-1}));
+    }
+    torch::Tensor flat = torch::cat(grads);
+    communicator_->allreduce_sum(flat);
+    std::int64_t offset = 0;
+    for (auto& p : model_->parameters()) {
+      const std::int64_t k = p.grad().numel();
+      p.mutable_grad().copy_(flat.slice(0, offset, offset + k).view_as(p.grad()));
+      offset += k;
+    }
+  }
   static std::string script_name(std::string key) {
     std::replace(key.begin(), key.end(), '.', '_');
     return key;
@@ -500,6 +622,8 @@ class TorchPpo {
   int obs_, act_;
   TorchActorCritic model_;
   torch::optim::Adam optimizer_;
+  PpoCommunicator* communicator_ = nullptr;
+  std::int64_t updates_ = 0;
 };
 
 }  // namespace walkgen

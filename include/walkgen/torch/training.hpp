@@ -7,8 +7,11 @@
 /// An environment type provides observation_size(), action_size(), reset(), observe(float*)
 /// and EnvStep step(const float*) (walkgen/learning/environment.hpp, nmpc_environment.hpp).
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <functional>
+#include <random>
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
@@ -53,7 +56,7 @@ inline PpoSettings nmpc_goal_ppo_settings() {
   return s;
 }
 
-/// Statistics of one training epoch (a fixed number of environment steps).
+/// Statistics of one training epoch (a whole number of updates), over all processes.
 struct PpoEpoch {
   int epoch = 0;             ///< 1-based
   long steps = 0;            ///< environment steps in this epoch (all environments)
@@ -64,15 +67,29 @@ struct PpoEpoch {
   double seconds = 0.0;    ///< wall time of the epoch
   int updates = 0;         ///< PPO updates in the epoch
   PpoUpdateResult update;  ///< the last update's statistics
+  /// Finished episodes that reached their goal (wins / episodes; 0 when none finished).
+  [[nodiscard]] double success_rate() const {
+    return episodes > 0 ? static_cast<double>(wins) / episodes : 0.0;
+  }
 };
 
 /// Runs a set of environments with a TorchPpo policy and updates it every rollout_steps
 /// vectorised steps. Episodes that end are reset at once; a truncated episode (step budget)
 /// is bootstrapped: γ V(s_final) is added to its last reward, as its state is not terminal.
+///
+/// An epoch is a whole number of updates and starts afresh: environment i (its index over all
+/// processes) is seeded with mix_seed(seed, i, epoch) and reset, and its exploration noise comes
+/// from its own generator, seeded likewise; episodes still running when the epoch ends are cut
+/// there (bootstrapped, as a truncation) and not counted. So the state of a run between epochs
+/// is the policy, Adam's state and the counters — what TorchPpo::save_checkpoint() writes — and
+/// a run resumed from a checkpoint (set_epoch()) continues exactly as the uninterrupted one. With
+/// a communicator on the policy (TorchPpo::set_communicator), each process steps its share of
+/// the environments and the epoch's statistics are summed over the processes.
 template <class Env>
 class PpoTrainer {
  public:
-  /// @param envs the environments, stepped in parallel on pool (one thread when null)
+  /// @param envs the environments, stepped in parallel on pool (one thread when null); each
+  ///        needs seed(std::uint64_t) besides the environment interface
   /// @param rollout_steps vectorised steps per update: T of algorithm 1, T · envs samples
   /// @throws walkgen::invalid_argument on no environments, sizes that differ from the policy's,
   ///         or rollout_steps < 1.
@@ -90,64 +107,109 @@ class PpoTrainer {
     obs_.assign(static_cast<std::size_t>(E_ * O_), 0.0f);
     final_obs_.assign(static_cast<std::size_t>(E_ * O_), 0.0f);
     action_.assign(static_cast<std::size_t>(E_ * A_), 0.0f);
+    noise_.assign(static_cast<std::size_t>(E_ * A_), 0.0f);
     log_prob_.assign(static_cast<std::size_t>(E_), 0.0f);
     value_.assign(static_cast<std::size_t>(E_), 0.0f);
     steps_.resize(static_cast<std::size_t>(E_));
     episode_return_.assign(static_cast<std::size_t>(E_), 0.0);
-    for (int e = 0; e < E_; ++e) envs_[e].reset();
+    noise_rng_.resize(static_cast<std::size_t>(E_));
+    normal_.resize(static_cast<std::size_t>(E_));
   }
 
-  /// Runs `steps` environment steps (rounded up to whole vectorised steps) and the updates
-  /// that fall in them.
+  /// Epochs run so far (the next run_epoch() is epoch epochs() + 1).
+  [[nodiscard]] int epochs() const { return epoch_; }
+  /// Continues a run after `epochs` epochs (from a checkpoint): the next epoch is epochs + 1.
+  void set_epoch(int epochs) {
+    check_argument(epochs >= 0, "PpoTrainer::set_epoch", "a count >= 0", epochs);
+    epoch_ = epochs;
+  }
+  /// Updates per epoch for `steps` environment steps over all processes (at least one).
+  [[nodiscard]] long updates_per_epoch(long steps) const {
+    const long per_update = static_cast<long>(T_) * E_ * world();
+    return std::max(1L, (steps + per_update - 1) / per_update);
+  }
+
+  /// Runs one epoch: updates_per_epoch(steps) rollouts and their updates.
   PpoEpoch run_epoch(long steps) {
     const auto t0 = std::chrono::steady_clock::now();
     PpoEpoch ep;
     ep.epoch = ++epoch_;
-    double reward_sum = 0.0, return_sum = 0.0;
-    while (ep.steps < steps) {
-      vector_step(ep, reward_sum, return_sum);
-      ep.steps += E_;
-      if (++t_ == T_) {
-        t_ = 0;
-        observe_all(obs_.data());
-        ppo_.values(obs_.data(), E_, rollout_.values.data() + static_cast<std::size_t>(T_) * E_);
-        ep.update = ppo_.update(rollout_);
-        ++ep.updates;
-      }
+    begin_epoch();
+    double sums[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // steps, reward, return, episodes, ...
+    const long updates = updates_per_epoch(steps);
+    for (long u = 0; u < updates; ++u) {
+      for (int t = 0; t < T_; ++t) vector_step(t, sums);
+      observe_all(obs_.data());
+      ppo_.values(obs_.data(), E_, rollout_.values.data() + static_cast<std::size_t>(T_) * E_);
+      ep.update = ppo_.update(rollout_);
+      ++ep.updates;
     }
-    ep.mean_reward = reward_sum / static_cast<double>(ep.steps);
-    ep.mean_return = ep.episodes > 0 ? return_sum / ep.episodes : 0.0;
+    if (PpoCommunicator* c = ppo_.communicator()) {
+      torch::Tensor t = torch::from_blob(sums, {7}, torch::kFloat64).clone();
+      c->allreduce_sum(t);
+      std::memcpy(sums, t.data_ptr<double>(), sizeof(sums));
+    }
+    ep.steps = static_cast<long>(sums[0]);
+    ep.episodes = static_cast<int>(sums[3]);
+    ep.wins = static_cast<int>(sums[4]);
+    ep.losses = static_cast<int>(sums[5]);
+    ep.truncations = static_cast<int>(sums[6]);
+    ep.mean_reward = ep.steps > 0 ? sums[1] / static_cast<double>(ep.steps) : 0.0;
+    ep.mean_return = ep.episodes > 0 ? sums[2] / ep.episodes : 0.0;
     ep.std = ppo_.std();
     ep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return ep;
   }
 
  private:
-  void observe_all(float* obs) {
-    for (int e = 0; e < E_; ++e) envs_[e].observe(obs + static_cast<std::size_t>(e) * O_);
+  int world() const {
+    return ppo_.communicator() != nullptr ? ppo_.communicator()->world_size() : 1;
   }
-  void vector_step(PpoEpoch& ep, double& reward_sum, double& return_sum) {
-    observe_all(obs_.data());
-    ppo_.act(obs_.data(), E_, false, action_.data(), log_prob_.data(), value_.data());
-    const std::function<void(int)> job = [this](int e) {
-      EnvStep r = envs_[e].step(action_.data() + static_cast<std::size_t>(e) * A_);
-      if (r.end == EpisodeEnd::truncated)
-        envs_[e].observe(final_obs_.data() + static_cast<std::size_t>(e) * O_);
-      steps_[e] = r;
-    };
+  void for_each_env(const std::function<void(int)>& job) {
     if (pool_ != nullptr)
       pool_->run(E_, job);
     else
       for (int e = 0; e < E_; ++e) job(e);
-    const std::size_t base = static_cast<std::size_t>(t_) * E_;
+  }
+  void begin_epoch() {
+    const int first = ppo_.communicator() != nullptr ? ppo_.communicator()->rank() * E_ : 0;
+    const std::uint64_t seed = ppo_.settings().seed;
+    for (int e = 0; e < E_; ++e) {
+      const auto global = static_cast<std::uint64_t>(first + e);
+      envs_[e].seed(mix_seed(seed, global, static_cast<std::uint64_t>(epoch_)));
+      noise_rng_[e].seed(
+          mix_seed(seed ^ 0xA5A5A5A5A5A5A5A5ull, global, static_cast<std::uint64_t>(epoch_)));
+      normal_[e].reset();
+      episode_return_[e] = 0.0;
+    }
+    for_each_env([this](int e) { envs_[e].reset(); });
+  }
+  void observe_all(float* obs) {
+    for (int e = 0; e < E_; ++e) envs_[e].observe(obs + static_cast<std::size_t>(e) * O_);
+  }
+  void vector_step(int t, double* sums) {
+    observe_all(obs_.data());
+    for (int e = 0; e < E_; ++e)
+      for (int a = 0; a < A_; ++a)
+        noise_[static_cast<std::size_t>(e * A_ + a)] = normal_[e](noise_rng_[e]);
+    ppo_.act(obs_.data(), E_, false, action_.data(), log_prob_.data(), value_.data(),
+             noise_.data());
+    for_each_env([this](int e) {
+      EnvStep r = envs_[e].step(action_.data() + static_cast<std::size_t>(e) * A_);
+      if (r.end == EpisodeEnd::truncated)
+        envs_[e].observe(final_obs_.data() + static_cast<std::size_t>(e) * O_);
+      steps_[e] = r;
+    });
+    const std::size_t base = static_cast<std::size_t>(t) * E_;
     std::copy(obs_.begin(), obs_.end(), rollout_.observations.begin() + base * O_);
     std::copy(action_.begin(), action_.end(), rollout_.actions.begin() + base * A_);
     std::copy(log_prob_.begin(), log_prob_.end(), rollout_.log_probs.begin() + base);
     std::copy(value_.begin(), value_.end(), rollout_.values.begin() + base);
+    sums[0] += E_;
     for (int e = 0; e < E_; ++e) {
       const EnvStep& r = steps_[e];
       double reward = r.reward;
-      reward_sum += r.reward;
+      sums[1] += r.reward;
       episode_return_[e] += r.reward;
       if (r.end == EpisodeEnd::truncated) {
         float v = 0.0f;
@@ -157,32 +219,30 @@ class PpoTrainer {
       rollout_.rewards[base + e] = static_cast<float>(reward);
       rollout_.dones[base + e] = r.done() ? 1.0f : 0.0f;
       if (r.done()) {
-        ++ep.episodes;
-        ep.wins += r.end == EpisodeEnd::success;
-        ep.losses += r.end == EpisodeEnd::failure;
-        ep.truncations += r.end == EpisodeEnd::truncated;
-        return_sum += episode_return_[e];
+        sums[2] += episode_return_[e];
+        sums[3] += 1.0;
+        sums[4] += r.end == EpisodeEnd::success;
+        sums[5] += r.end == EpisodeEnd::failure;
+        sums[6] += r.end == EpisodeEnd::truncated;
         episode_return_[e] = 0.0;
       }
     }
     // resets (an NMPC reset re-initialises the generator) in parallel too
-    const std::function<void(int)> reset = [this](int e) {
+    for_each_env([this](int e) {
       if (steps_[e].done()) envs_[e].reset();
-    };
-    if (pool_ != nullptr)
-      pool_->run(E_, reset);
-    else
-      for (int e = 0; e < E_; ++e) reset(e);
+    });
   }
 
   TorchPpo& ppo_;
   std::vector<Env>& envs_;
   StepPool* pool_;
-  int T_, E_ = 0, O_ = 0, A_ = 0, t_ = 0, epoch_ = 0;
+  int T_, E_ = 0, O_ = 0, A_ = 0, epoch_ = 0;
   PpoRollout rollout_;
-  std::vector<float> obs_, final_obs_, action_, log_prob_, value_;
+  std::vector<float> obs_, final_obs_, action_, noise_, log_prob_, value_;
   std::vector<EnvStep> steps_;
   std::vector<double> episode_return_;
+  std::vector<std::mt19937_64> noise_rng_;
+  std::vector<std::normal_distribution<float>> normal_;
 };
 
 /// Wins and losses of the deterministic policy (the mean μ_θ, test mode) over `steps` steps of
