@@ -3,7 +3,8 @@
 #   release   configure, build and ctest the release preset (every test, examples included);
 #   sanitize  the same tests under ASan + UBSan (sanitize preset: tests and fuzz replays, no
 #             examples, benchmarks or libtorch);
-#   fuzz      a bounded libFuzzer run of every fuzz harness (scripts/fuzz.sh, 60 s each).
+#   fuzz      a bounded libFuzzer run of every fuzz harness (scripts/fuzz.sh, 60 s each; 30 s
+#             with CI=true; WALKGEN_FUZZ_SECONDS sets it).
 # Options: --only STAGE[,STAGE...] runs those stages; arguments after them go to the release
 # stage's ctest, e.g. `bash scripts/test.sh --only release -L unit`. Exit code: 0 when every
 # stage passed, else the first failing stage's.
@@ -12,7 +13,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 stages="release,sanitize,fuzz"
 if [ "${1:-}" = "--help" ] || [ "${1:-}" = "-h" ]; then
-  sed -n '2,9p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+  sed -n '2,10p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
   exit 0
 fi
 if [ "${1:-}" = "--only" ]; then
@@ -44,7 +45,9 @@ if has_stage sanitize; then
 fi
 if has_stage fuzz; then
   start=${SECONDS}
-  bash scripts/fuzz.sh --seconds 60
+  fuzz_seconds=60
+  if [ "${CI:-}" = "true" ]; then fuzz_seconds=30; fi
+  bash scripts/fuzz.sh --seconds "${WALKGEN_FUZZ_SECONDS:-${fuzz_seconds}}"
   finish_stage fuzz $? "${start}"
 fi
 echo "test: exited with ${rc} (stages ${stages})"
