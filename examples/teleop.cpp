@@ -56,8 +56,6 @@ namespace {
 
 /// Reached: the true CoM this close to the room's target [m] (as run_navigation_episode).
 constexpr double kRoomReachDistance = 0.3;
-/// Margin of the chairs and the person as NMPC obstacles [m] (as run_navigation_episode).
-constexpr double kRoomObstacleMargin = 0.12;
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
@@ -238,7 +236,8 @@ int main(int argc, char** argv) {
   walkgen::WalkingSettings<double> settings = humanoid.walking;
   if (scene) {
     robot_settings.objects = scene->objects();
-    settings.obstacles = scene->obstacles_at(0.0, kRoomObstacleMargin);  // chairs and person
+    settings.obstacles =
+        scene->obstacles_at(0.0, walkgen::kNavigationObstacleMargin);  // chairs and person
   }
   walkgen::MujocoRobot robot(robot_settings);
   walkgen::HumanoidIk ik(tree);
@@ -326,11 +325,7 @@ int main(int argc, char** argv) {
     } while (!quit && g_stop == 0 && wall() < sim / speed);
     if (quit) break;
     const double t = robot.output().time - t0;
-    if (scene && scene->has_person) {  // the person walks on; the NMPC avoids where it is now
-      const Eigen::Vector2d p = scene->person.position(t);
-      robot.set_object_position("person", {p.x(), p.y(), 0.0});
-      loop.mpc().set_obstacles(scene->obstacles_at(t, kRoomObstacleMargin));
-    }
+    if (scene) walkgen::move_person(*scene, t, robot, loop.mpc());  // the person walks on
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS
     if (recorder) {  // what the robot sees now, and the command it executes from now
       const walkgen::StereoImages& images = robot.render_cameras();

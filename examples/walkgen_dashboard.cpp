@@ -50,9 +50,6 @@ namespace {
 std::atomic<int> g_signal{0};
 void on_signal(int s) { g_signal = s; }
 
-/// Margin of the chairs and the person as NMPC obstacles [m] (as run_navigation_episode).
-constexpr double kObstacleMargin = 0.12;
-
 nlohmann::json xy(double x, double y) { return nlohmann::json::array({x, y}); }
 nlohmann::json pose(const walkgen::FootPose<double>& p) {
   return nlohmann::json::array({p.x, p.y, p.q});
@@ -130,7 +127,7 @@ int main(int argc, char** argv) {
   walkgen::WalkingSettings<double> settings = robot_description.walking;
   if (scene) {
     robot_settings.objects = scene->objects();
-    settings.obstacles = scene->obstacles_at(0.0, kObstacleMargin);
+    settings.obstacles = scene->obstacles_at(0.0, walkgen::kNavigationObstacleMargin);
   }
   walkgen::MujocoRobot robot(robot_settings);
   walkgen::HumanoidIk ik(tree, walkgen::ceres_ik_settings(robot_description));
@@ -181,11 +178,7 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_until(wall0 +
                                   std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                       std::chrono::duration<double>(sim / speed)));
-    if (scene && scene->has_person) {  // the person walks on; the NMPC avoids where it is now
-      const Eigen::Vector2d p = scene->person.position(sim);
-      robot.set_object_position("person", {p.x(), p.y(), 0.0});
-      loop.mpc().set_obstacles(scene->obstacles_at(sim, kObstacleMargin));
-    }
+    if (scene) walkgen::move_person(*scene, sim, robot, loop.mpc());  // the person walks on
     if (board.take_stop()) {
       command.setZero();
       (void)loop.request_stop();

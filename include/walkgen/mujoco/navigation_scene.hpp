@@ -201,6 +201,21 @@ struct NavigationScene {
   }
 };
 
+/// Margin [m] that the NMPC keeps the footsteps from the rooms' chairs and person (eq. 2.79),
+/// for every program walking in them (navigation episodes, teleoperation, the dashboard).
+inline constexpr double kNavigationObstacleMargin = 0.12;
+
+/// Moves the scene's person (if it has one) to where it is at time t [s] since the walk began,
+/// in the simulation and in the NMPC's obstacles (chairs and person, kNavigationObstacleMargin):
+/// the NMPC avoids where the person is now. `Mpc` is a walkgen::WalkingMpc.
+template <class Mpc>
+void move_person(const NavigationScene& scene, double t, MujocoRobot& robot, Mpc& mpc) {
+  if (!scene.has_person) return;
+  const Eigen::Vector2d p = scene.person.position(t);
+  robot.set_object_position("person", {p.x(), p.y(), 0.0});
+  mpc.set_obstacles(scene.obstacles_at(t, kNavigationObstacleMargin));
+}
+
 /// A random layout of `task` from `seed` (the same seed gives the same room).
 inline NavigationScene make_navigation_scene(NavigationTask task, std::uint32_t seed) {
   std::mt19937 rng(seed * 2654435761u + static_cast<std::uint32_t>(task));

@@ -180,7 +180,7 @@ class NavigationEpisode {
  public:
   /// Builds the robot in `scene` and starts the walk; done() when that or the first render
   /// failed (result() says why). Heicub's settings with the scene's chairs and person as NMPC
-  /// obstacles (margin 0.12 m; the person's circle moves every tick).
+  /// obstacles (kNavigationObstacleMargin; the person's circle moves every tick).
   /// @throws walkgen::invalid_argument for invalid options (validate()) or when the humanoid's
   ///   model cannot be loaded.
   explicit NavigationEpisode(const NavigationScene& scene, NavigationOptions options = {})
@@ -192,7 +192,8 @@ class NavigationEpisode {
     robot_ = std::make_unique<MujocoRobot>(robot_settings);
     ik_ = std::make_unique<HumanoidIk>(tree);
     settings_ = humanoid.walking;
-    settings_.obstacles = scene_.obstacles_at(0.0, 0.12);  // capacity for chairs and the person
+    settings_.obstacles =
+        scene_.obstacles_at(0.0, kNavigationObstacleMargin);  // capacity for chairs and the person
     loop_ = std::make_unique<SimLoop>(settings_, *robot_, *ik_);
     forbidden_ = detail::obstacle_geoms(*robot_);
 
@@ -229,11 +230,7 @@ class NavigationEpisode {
   const NavigationObservation& observe() {
     WALKGEN_ASSERT(can_observe());
     const double t = robot_->output().time - t0_;
-    if (scene_.has_person) {
-      const Eigen::Vector2d p = scene_.person.position(t);
-      robot_->set_object_position("person", {p.x(), p.y(), 0.0});
-      loop_->mpc().set_obstacles(scene_.obstacles_at(t, 0.12));
-    }
+    move_person(scene_, t, *robot_, loop_->mpc());
     const StereoImages& images = robot_->render_cameras();
     const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
                        const_cast<std::uint8_t*>(images.left.rgb.data()));

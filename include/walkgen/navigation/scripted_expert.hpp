@@ -55,7 +55,7 @@ class ScriptedExpert {
                  double stop_distance = 0.15)
       : scene_(scene),
         limit_(0.95 * max_command),
-        steer_(scene.target, max_command, scene.obstacles_at(0.0, 0.12), [&] {
+        steer_(scene.target, max_command, scene.obstacles_at(0.0, kNavigationObstacleMargin), [&] {
           GoToTargetSettings s;
           s.stop_distance = stop_distance;
           s.heading_gain = 0.35;
