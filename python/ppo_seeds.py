@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """PPO's reliability over seeds (issue 27): trains examples/ppo_train once per environment and
 seed, tests each policy on held-out goals, and writes one row per run to a CSV file with the
-columns env, seed, success_rate (plus reached, goals, qp_failures, timeouts, train_seconds).
+columns env, seed, success_rate (plus reached, goals, qp_failures, timeouts, and seconds: the
+wall time of training and test).
 
     /usr/bin/python3 python/ppo_seeds.py --ppo-train build/release/examples/ppo_train \\
         --out docs/results/ppo_seeds.csv --work ppo_seeds_runs --seeds 1 2 3 4 5 --require 0.95
@@ -25,7 +26,7 @@ ENVS = {  # env name -> ppo_train arguments and training epochs (docs/learning.m
     "nmpc_obstacles": (["nmpc", "--obstacles", "1"], 80),
 }
 COLUMNS = ["env", "seed", "success_rate", "reached", "goals", "qp_failures", "timeouts",
-           "train_seconds"]
+           "seconds"]
 
 
 def write_atomically(path, rows):
@@ -83,11 +84,11 @@ def main():
                                                              run.stderr))
             r = result(os.path.join(out, "test_%s.csv" % env))
             r.update(env=env, seed=seed, success_rate="%.2f" % (r["reached"] / r["goals"]),
-                     train_seconds="%.0f" % (time.monotonic() - start))
+                     seconds="%.0f" % (time.monotonic() - start))
             rows.append(r)
             print("        success %s (%d of %d; %d QP failures, %d out of time), %s s"
                   % (r["success_rate"], r["reached"], r["goals"], r["qp_failures"],
-                     r["timeouts"], r["train_seconds"]), flush=True)
+                     r["timeouts"], r["seconds"]), flush=True)
             write_atomically(a.out, rows)
     worst = min(float(r["success_rate"]) for r in rows)
     print("ppo_seeds: %d runs, lowest success rate %.2f, written to %s" % (len(rows), worst, a.out))
