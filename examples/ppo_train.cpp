@@ -85,6 +85,9 @@ struct Options {
   bool plot = false;
   bool quiet = false;
   walkgen::PpoCommunicator* communicator = nullptr;
+  /// text_hash of the settings a resumed run must share with its checkpoint (all but the
+  /// epochs to run, the threads and the checkpoint interval)
+  std::uint64_t settings_hash = 0;
   bool lead() const { return rank == 0; }
 };
 
@@ -103,18 +106,30 @@ std::string duration_text(double seconds) {
   return buf;
 }
 
-// The CSV log's rows of epochs <= `epochs` (a resumed run continues the log of its checkpoint).
+// `text` to `path` atomically; a failed write throws (the old file stays).
+void write_text(const std::string& path, const std::string& text) {
+  walkgen::write_atomically(path, [&](const std::string& temp) {
+    std::ofstream out(temp);
+    out << text;
+    out.close();
+    walkgen::check_argument(!out.fail(), "ppo_train", "'" + path + "' written", "a write error",
+                            "is the disk full, the folder writable?");
+  });
+}
+
+// The CSV log's complete rows of epochs <= `epochs` (a resumed run continues the log of its
+// checkpoint; a row cut short by an interruption is dropped).
 void truncate_log(const std::string& csv, int epochs) {
   std::ifstream in(csv);
   if (!in) return;
-  std::string line, kept;
-  for (int row = 0; std::getline(in, line); ++row)
-    if (row == 0 || std::atoi(line.c_str()) <= epochs) kept += line + '\n';
+  std::string line, header, kept;
+  if (!std::getline(in, header)) return;
+  const auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+  kept = header + '\n';
+  while (std::getline(in, line))
+    if (fields(line) == fields(header) && std::atoi(line.c_str()) <= epochs) kept += line + '\n';
   in.close();
-  walkgen::write_atomically(csv, [&](const std::string& temp) {
-    std::ofstream out(temp);
-    out << kept;
-  });
+  write_text(csv, kept);
 }
 
 constexpr const char* kLogHeader =
@@ -138,9 +153,11 @@ bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& po
   const std::string checkpoint = o.out + "/checkpoint_" + env_name(o) + ".pt";
   double best = -1e300, elapsed = 0.0, total_steps = 0.0;
   int best_epoch = 0;
-  const std::vector<std::string> counters = {"epoch",      "best_score",   "best_epoch",
-                                             "elapsed",    "total_steps",  "envs",
-                                             "world_size", "rollout_steps"};
+  const std::vector<std::string> counters = {
+      "epoch", "best_score", "best_epoch",    "elapsed",          "total_steps",
+      "envs",  "world_size", "rollout_steps", "settings_hash_hi", "settings_hash_lo"};
+  const double hash_hi = static_cast<double>(o.settings_hash >> 32);
+  const double hash_lo = static_cast<double>(o.settings_hash & 0xFFFFFFFFull);
   if (o.resume) {
     const auto c = ppo.resume_checkpoint(checkpoint, counters);
     const auto check_same = [&](double saved, double now, const char* what) {
@@ -151,6 +168,23 @@ bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& po
     check_same(c[5], run.envs, "envs");
     check_same(c[6], o.world_size, "world size");
     check_same(c[7], run.rollout_steps, "rollout_steps");
+    walkgen::check_argument(c[8] == hash_hi && c[9] == hash_lo, "--resume",
+                            "the settings of the checkpoint's run (seed, steps, PPO's "
+                            "hyper-parameters, environment; compare " +
+                                o.out + "/config_" + env_name(o) + ".yaml)",
+                            "other settings", "resume with the run's command line and --config");
+    if (o.communicator != nullptr) {  // every rank resumed the same state
+      std::uint64_t h =
+          walkgen::text_hash(reinterpret_cast<const char*>(c.data()), sizeof(double) * c.size());
+      for (const auto& p : ppo.model()->parameters()) {
+        const torch::Tensor t = p.detach().contiguous();
+        h ^= walkgen::text_hash(static_cast<const char*>(t.data_ptr()), t.nbytes()) +
+             0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+      }
+      walkgen::check_same_on_all_processes(*o.communicator,
+                                           h ^ static_cast<std::uint64_t>(ppo.updates()),
+                                           "checkpoint (epoch, counters and weights)");
+    }
     trainer.set_epoch(static_cast<int>(c[0]));
     best = c[1];
     best_epoch = static_cast<int>(c[2]);
@@ -169,13 +203,21 @@ bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& po
     if (!append) log << kLogHeader;
   }
   const bool bar = o.lead() && !o.quiet && isatty(fileno(stdout));
-  int done_here = 0;
+  int done_here = 0, last_checkpoint = o.resume ? trainer.epochs() : 0;
   double here_seconds = 0.0;  // this invocation's epochs: the ETA's rate
   while (trainer.epochs() < run.epochs) {
     if (o.stop_after > 0 && done_here == o.stop_after) {
       if (bar) std::printf("\n");
-      std::printf("stopped after epoch %d (--stop-after %d); continue with --resume\n",
-                  trainer.epochs(), o.stop_after);
+      if (last_checkpoint > 0)
+        std::printf(
+            "stopped after epoch %d (--stop-after %d); --resume continues from the "
+            "checkpoint of epoch %d\n",
+            trainer.epochs(), o.stop_after, last_checkpoint);
+      else
+        std::printf(
+            "stopped after epoch %d (--stop-after %d); no checkpoint was written "
+            "(--checkpoint-every 0 or none due yet)\n",
+            trainer.epochs(), o.stop_after);
       return false;
     }
     const walkgen::PpoEpoch ep = trainer.run_epoch(run.steps);
@@ -196,17 +238,23 @@ bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& po
           << ep.update.clip_fraction << ',' << static_cast<long long>(total_steps) << ','
           << ep.success_rate() << ',' << elapsed << ',' << ppo.updates() << '\n';
       log.flush();
-      if (run.checkpoint_every > 0 &&
-          (ep.epoch % run.checkpoint_every == 0 || ep.epoch == run.epochs))
-        ppo.save_checkpoint(checkpoint, {{"epoch", ep.epoch},
-                                         {"best_score", best},
-                                         {"best_epoch", best_epoch},
-                                         {"elapsed", elapsed},
-                                         {"total_steps", total_steps},
-                                         {"envs", run.envs},
-                                         {"world_size", o.world_size},
-                                         {"rollout_steps", run.rollout_steps}});
+      walkgen::check_argument(!log.fail(), "ppo_train", "'" + csv + "' written", "a write error",
+                              "is the disk full?");
     }
+    const bool due = run.checkpoint_every > 0 &&
+                     (ep.epoch % run.checkpoint_every == 0 || ep.epoch == run.epochs);
+    if (due) last_checkpoint = ep.epoch;
+    if (due && o.lead())
+      ppo.save_checkpoint(checkpoint, {{"epoch", ep.epoch},
+                                       {"best_score", best},
+                                       {"best_epoch", best_epoch},
+                                       {"elapsed", elapsed},
+                                       {"total_steps", total_steps},
+                                       {"envs", run.envs},
+                                       {"world_size", o.world_size},
+                                       {"rollout_steps", run.rollout_steps},
+                                       {"settings_hash_hi", hash_hi},
+                                       {"settings_hash_lo", hash_lo}});
     if (o.quiet || !o.lead()) continue;
     const double eta = (here_seconds += ep.seconds) / done_here * (run.epochs - ep.epoch);
     if (bar) {
@@ -535,8 +583,17 @@ int main(int argc, char** argv) {
                  "where the processes meet: rank 0's address (default: $MASTER_ADDR, else "
                  "127.0.0.1)");
   app.add_option("--master-port", o.master_port,
-                 "rank 0's TCP port for the meeting (default: $MASTER_PORT, else 29500)")
-      ->transform(walkgen_examples::decimal_at_least<int>(1));
+                 "rank 0's TCP port for the meeting, 1 ... 65535 (default: $MASTER_PORT, else "
+                 "29500); rank 0 listens on it on every interface")
+      ->transform(walkgen_examples::decimal_at_least<int>(1))
+      ->check(CLI::Range(1, 65535));
+#else
+  if (const char* world = std::getenv("WORLD_SIZE"); world != nullptr && std::atoi(world) > 1) {
+    std::cerr << "ppo_train: WORLD_SIZE=" << world
+              << " asks for a distributed run, but this build has no c10d Gloo (install "
+                 "libgloo-dev and configure again)\n";
+    return 2;
+  }
 #endif
   app.add_option("--policy", o.policy,
                  "test this saved policy instead of training one (default: none)")
@@ -577,12 +634,28 @@ int main(int argc, char** argv) {
       o.communicator = group.get();
     }
 #endif
+    {
+      walkgen::PpoConfig resumable = o.cfg;  // what a resumed run must share with its checkpoint
+      resumable.run.epochs = 1;
+      resumable.run.threads = 1;
+      resumable.run.checkpoint_every = 0;
+      const std::string key =
+          o.env + " obstacles " + std::to_string(o.obstacles) + "\n" + config_yaml(resumable);
+      o.settings_hash = walkgen::text_hash(key.data(), key.size());
+    }
+#if WALKGEN_HAS_DISTRIBUTED
+    if (o.communicator != nullptr) {  // the same settings everywhere, or every rank stops here
+      const std::string all = o.env + " obstacles " + std::to_string(o.obstacles) + "\n" +
+                              config_yaml(o.cfg) + (o.resume ? "resume" : "") +
+                              std::to_string(o.stop_after);
+      walkgen::check_same_on_all_processes(*o.communicator,
+                                           walkgen::text_hash(all.data(), all.size()),
+                                           "settings (command line and --config)");
+    }
+#endif
     if (o.lead() && o.policy.empty()) {
       const std::string path = o.out + "/config_" + env_name(o) + ".yaml";
-      walkgen::write_atomically(path, [&](const std::string& temp) {
-        std::ofstream f(temp);
-        f << config_yaml(o.cfg);
-      });
+      write_text(path, config_yaml(o.cfg));
     }
     rc = o.env == "benchmark" ? run_benchmark(o) : run_nmpc(o);
   } catch (const std::exception& e) {

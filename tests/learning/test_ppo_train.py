@@ -10,6 +10,7 @@ import pty
 import socket
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -148,12 +149,21 @@ def test_config_file_and_options(tmp_path):
 
 
 def test_bad_command_lines():
-    for args in (["nmpc", "--world-size", "2", "--rank", "2"], ["nmpc", "--envs", "3",
-                                                                  "--world-size", "2"]):
-        r = run(args + ["--master-port", str(free_port())])
-        assert r.returncode in (1, 2), r
-        assert "ppo_train" in r.stderr or "rank" in r.stderr.lower() or "envs" in r.stderr
-    assert run(["nmpc", "--epochs", "0"]).returncode == 2
+    """Each is refused at once, naming what is wrong, before any rank waits for another."""
+    cases = ((["nmpc", "--world-size", "2", "--rank", "2"], "--rank"),
+             (["nmpc", "--envs", "3", "--world-size", "2"], "--envs"),
+             (["nmpc", "--steps", "1000000000001"], "steps"),
+             (["nmpc", "--master-port", "70000", "--world-size", "2"], "--master-port"),
+             (["nmpc", "--epochs", "0"], "--epochs"))
+    for args, named in cases:
+        start = time.monotonic()
+        r = run(args + ([] if "--master-port" in args else ["--master-port", str(free_port())]))
+        assert r.returncode in (1, 2), (args, r.stdout, r.stderr)
+        assert named in r.stderr, (args, r.stderr)
+        assert time.monotonic() - start < 30, args  # no waiting for a rank that never comes
+    env = dict(os.environ, RANK="x")
+    r = run(["nmpc"], env=env)
+    assert r.returncode == 2 and "RANK" in r.stderr
 
 
 def test_progress_bar_on_a_terminal(tmp_path):

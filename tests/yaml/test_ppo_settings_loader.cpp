@@ -109,6 +109,7 @@ TEST(PpoSettingsLoader, BadInputNamesTheKey) {
   EXPECT_NE(error_of("run: {epochs: 0x10}").find("whole number"), std::string::npos);
   EXPECT_NE(error_of("run: {seed: 18446744073709551616}").find("'run.seed'"), std::string::npos);
   EXPECT_NE(error_of("run: {envs: 2147483648}").find("'run.envs'"), std::string::npos);
+  EXPECT_NE(error_of("run: {steps: 1000000000001}").find("'run.steps'"), std::string::npos);
   EXPECT_NE(error_of("run: {epochs: 3, epochs: 4}").find("each key once"), std::string::npos);
   EXPECT_NE(error_of("run: [1, 2]").find("a map of keys"), std::string::npos);
   EXPECT_NE(error_of("- 1\n- 2").find("a map with the keys ppo and run"), std::string::npos);

@@ -53,7 +53,10 @@ struct PpoSettings {
   double target_kl = 0.02;
   double reward_scale = 1.0;         ///< rewards are multiplied by this before GAE (value scale)
   bool normalize_advantages = true;  ///< advantages to zero mean, unit std per update
-  std::uint64_t seed = 0;            ///< torch::manual_seed (weights, sampling, shuffling)
+  /// Seeds the initial weights (torch::manual_seed) and each update's minibatch order
+  /// (walkgen::mix_seed); PpoTrainer also seeds the environments and their exploration noise
+  /// from it.
+  std::uint64_t seed = 0;
 };
 
 /// How an update ended.
@@ -118,7 +121,8 @@ struct PpoRunSettings {
 /// Checks a run's settings. @throws walkgen::invalid_argument naming the first bad field.
 inline void validate(const PpoRunSettings& s) {
   check_argument(s.epochs >= 1, "PpoRunSettings.epochs", "at least 1", s.epochs);
-  check_argument(s.steps >= 1, "PpoRunSettings.steps", "at least 1", s.steps);
+  check_argument(s.steps >= 1 && s.steps <= 1000000000000L, "PpoRunSettings.steps",
+                 "a count in [1, 10^12]", s.steps);
   check_argument(s.envs >= 1, "PpoRunSettings.envs", "at least 1", s.envs);
   check_argument(s.rollout_steps >= 1, "PpoRunSettings.rollout_steps", "at least 1",
                  s.rollout_steps);

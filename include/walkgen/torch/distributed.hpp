@@ -3,7 +3,12 @@
 /// Data-parallel PPO across processes and machines on PyTorch's c10d: walkgen::PpoCommunicator
 /// implemented by a Gloo process group (c10d::ProcessGroupGloo) that meets at a TCPStore, as
 /// torchrun's processes do. Each process steps its share of the environments; TorchPpo sums the
-/// advantage statistics and averages the gradients over the group (walkgen/torch/ppo.hpp).
+/// advantage statistics and the gradients of the processes' loss shares over the group
+/// (walkgen/torch/ppo.hpp).
+///
+/// Network: rank 0's TCPStore listens on master_port on every interface (c10d 1.13 has no
+/// setting for its listening address), so use a port that a firewall keeps private; Gloo's own
+/// connections follow the device rule below. A one-process run starts no server.
 ///
 /// Target walkgen::torch_distributed (CMake option WALKGEN_WITH_DISTRIBUTED: libtorch plus
 /// Debian's libgloo-dev, which holds the Gloo headers that libtorch's c10d headers include).

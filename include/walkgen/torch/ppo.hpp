@@ -178,6 +178,34 @@ class PpoCommunicator {
   virtual void broadcast(torch::Tensor& tensor) = 0;
 };
 
+/// FNV-1a hash of a text (e.g. a run's settings), the same on every machine.
+constexpr std::uint64_t text_hash(const char* text, std::size_t size) noexcept {
+  std::uint64_t h = 0xCBF29CE484222325ull;
+  for (std::size_t i = 0; i < size; ++i)
+    h = (h ^ static_cast<unsigned char>(text[i])) * 0x100000001B3ull;
+  return h;
+}
+
+/// Checks that every process holds the same `value` (e.g. a hash of its settings, its epoch):
+/// process 0's is broadcast, each compares, and the mismatches are summed, so that all
+/// processes throw together rather than wait for each other in a later collective.
+/// @throws walkgen::invalid_argument on every process when any differs, naming `what`.
+inline void check_same_on_all_processes(PpoCommunicator& communicator, std::uint64_t value,
+                                        const std::string& what) {
+  torch::Tensor mine = torch::tensor({static_cast<std::int64_t>(value)}, torch::kInt64);
+  torch::Tensor first = mine.clone();
+  communicator.broadcast(first);
+  torch::Tensor differs = torch::tensor(
+      {first.item<std::int64_t>() != mine.item<std::int64_t>() ? 1.0 : 0.0}, torch::kFloat64);
+  communicator.allreduce_sum(differs);
+  const int count = static_cast<int>(differs.item<double>());
+  check_argument(
+      count == 0, "check_same_on_all_processes",
+      "the same " + what + " on all " + std::to_string(communicator.world_size()) + " processes",
+      std::to_string(count) + " process(es) with another than process 0's",
+      "start every process with the same settings (and from the same checkpoint)");
+}
+
 /// A 64-bit mix of a seed and two counters (splitmix64's finaliser over their sum): the seed of
 /// environment `index` in epoch `epoch`, of its exploration noise, of an update's minibatch
 /// order. Equal inputs give equal seeds on every machine, so a run's randomness depends on the

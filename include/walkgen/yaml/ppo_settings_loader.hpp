@@ -134,7 +134,9 @@ inline PpoConfig ppo_config_from_node(const YAML::Node& root, const std::string&
   const std::vector<std::pair<const char*, std::function<void(const YamlValue&)>>> run_keys = {
       {"epochs", count(r.epochs, 1)},
       {"steps",
-       [&r](const YamlValue& v) { r.steps = static_cast<long>(yaml_whole(v, 1, LONG_MAX)); }},
+       [&r](const YamlValue& v) {
+         r.steps = static_cast<long>(yaml_whole(v, 1, 1000000000000ull));
+       }},
       {"envs", count(r.envs, 1)},
       {"rollout_steps", count(r.rollout_steps, 1)},
       {"threads", count(r.threads, 1)},
