@@ -525,37 +525,41 @@ int main(int argc, char** argv) {
                  "YAML file of PPO settings (ppo:) and the run (run:), see docs/learning.md; "
                  "options given here override it")
       ->check(CLI::ExistingFile);
-  auto* epochs = app.add_option("--epochs", cli.epochs,
-                                "training epochs, >= 1 (default: benchmark 50, nmpc 30)")
-                     ->transform(walkgen_examples::decimal_at_least<int>(1))
-                     ->default_str("");
-  auto* steps = app.add_option("--steps", cli.steps,
-                               "steps per epoch over all processes, >= 1, rounded up to whole "
-                               "updates (default: benchmark 10000, nmpc 8192)")
-                    ->transform(walkgen_examples::decimal_at_least<long>(1))
-                    ->default_str("");
-  auto* seed = app.add_option("--seed", cli.seed,
-                              "seed of the weights, the environments, the exploration noise and "
-                              "the minibatch order (default 1)")
-                   ->transform(walkgen_examples::decimal_at_least<std::uint64_t>(0))
-                   ->default_str("");
+  // The run's options: given on the command line, they override the defaults and --config.
+  std::vector<std::function<void()>> overrides;
+  const auto run_option = [&](const char* name, auto& cli_field, auto min, const std::string& help,
+                              auto apply) {
+    using T = std::decay_t<decltype(cli_field)>;
+    CLI::Option* option =
+        app.add_option(name, cli_field, help)
+            ->transform(walkgen_examples::decimal_at_least<T>(static_cast<T>(min)))
+            ->default_str("");
+    overrides.push_back([option, apply] {
+      if (option->count() > 0) apply();
+    });
+  };
+  run_option("--epochs", cli.epochs, 1, "training epochs, >= 1 (default: benchmark 50, nmpc 30)",
+             [&] { o.cfg.run.epochs = cli.epochs; });
+  run_option("--steps", cli.steps, 1,
+             "steps per epoch over all processes, >= 1, rounded up to whole updates (default: "
+             "benchmark 10000, nmpc 8192)",
+             [&] { o.cfg.run.steps = cli.steps; });
+  run_option("--seed", cli.seed, 0,
+             "seed of the weights, the environments, the exploration noise and the minibatch "
+             "order (default 1)",
+             [&] { o.cfg.run.seed = cli.seed; });
   app.add_option("--out", o.out, "folder of the CSV files, the policy and the checkpoint");
-  auto* envs = app.add_option("--envs", cli.envs,
-                              "environments over all processes, a multiple of --world-size "
-                              "(default 8)")
-                   ->transform(walkgen_examples::decimal_at_least<int>(1))
-                   ->default_str("");
-  auto* threads = app.add_option("--threads", cli.threads,
-                                 "threads that step a process's environments (default: "
-                                 "benchmark 1, nmpc 2)")
-                      ->transform(walkgen_examples::decimal_at_least<int>(1))
-                      ->default_str("");
+  run_option("--envs", cli.envs, 1,
+             "environments over all processes, a multiple of --world-size (default 8)",
+             [&] { o.cfg.run.envs = cli.envs; });
+  run_option("--threads", cli.threads, 1,
+             "threads that step a process's environments (default: benchmark 1, nmpc 2)",
+             [&] { o.cfg.run.threads = cli.threads; });
   app.add_option("--obstacles", o.obstacles, "nmpc: circular obstacles per episode, >= 0")
       ->transform(walkgen_examples::decimal_at_least<int>(0));
-  auto* every = app.add_option("--checkpoint-every", cli.checkpoint_every,
-                               "epochs between checkpoints, 0: none (default 1)")
-                    ->transform(walkgen_examples::decimal_at_least<int>(0))
-                    ->default_str("");
+  run_option("--checkpoint-every", cli.checkpoint_every, 0,
+             "epochs between checkpoints, 0: none (default 1)",
+             [&] { o.cfg.run.checkpoint_every = cli.checkpoint_every; });
   app.add_flag("--resume", o.resume,
                "continue from <out>/checkpoint_<env>.pt (same settings): the result equals the "
                "uninterrupted run's");
@@ -611,12 +615,7 @@ int main(int argc, char** argv) {
   try {
     o.cfg = defaults_for(o.env);
     if (!o.config.empty()) o.cfg = walkgen::load_ppo_config(o.config, o.cfg);
-    if (epochs->count() > 0) o.cfg.run.epochs = cli.epochs;
-    if (steps->count() > 0) o.cfg.run.steps = cli.steps;
-    if (seed->count() > 0) o.cfg.run.seed = cli.seed;
-    if (envs->count() > 0) o.cfg.run.envs = cli.envs;
-    if (threads->count() > 0) o.cfg.run.threads = cli.threads;
-    if (every->count() > 0) o.cfg.run.checkpoint_every = cli.checkpoint_every;
+    for (const auto& apply : overrides) apply();
     walkgen::validate(o.cfg.run);
     walkgen::check_argument(o.rank < o.world_size, "--rank",
                             "a rank below the world size " + std::to_string(o.world_size), o.rank);
