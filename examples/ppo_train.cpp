@@ -15,14 +15,20 @@
 // Options (CLI11, examples/common/cli.hpp; --help lists them with their defaults):
 //   --config FILE   PPO hyper-parameters and the run's schedule from YAML (walkgen::PpoConfig,
 //                   keys in docs/learning.md); the options below override the file
-//   --epochs E      training epochs, >= 1 (default 50 for benchmark, 30 for nmpc)
+//   --epochs E      training epochs, >= 1 (default 50 for benchmark, 30 for nmpc, 200 with
+//                   obstacles)
 //   --steps S       environment steps per epoch, all processes, >= 1 (default 10000 benchmark,
 //                   8192 nmpc), rounded up to whole updates
 //   --seed N        seed of the weights, environments, noise and minibatch order (default 1)
 //   --out DIR       output folder, created if missing (default .)
 //   --envs K        environments, all processes (default 8)
 //   --threads T     threads that step a process's environments (default 2; benchmark 1)
-//   --obstacles K   nmpc: circular obstacles per episode, >= 0 (default 0)
+//   --obstacles K   nmpc: circular obstacles per episode, >= 0 (default 0); with obstacles the
+//                   defaults are --observe-motion, --success-reward 10000, --epochs 200 and
+//                   ppo.anneal_learning_rate
+//   --observe-motion, --no-observe-motion   nmpc: the robot's motion in the state (7 numbers)
+//   --success-reward R   nmpc: reward for reaching the goal (default 100, the thesis's)
+//   --obstacle-weight W  nmpc: shaping near obstacles (NmpcGoalSettings::obstacle_weight, 0)
 //   --checkpoint-every K   epochs between checkpoints (<out>/checkpoint_<env>.pt; 0: none)
 //   --resume        continue from <out>/checkpoint_<env>.pt: the result equals an uninterrupted run
 //   --stop-after E  stop after E epochs of this invocation, as an interruption would (for tests)
@@ -50,6 +56,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -69,12 +76,19 @@
 
 namespace {
 
+constexpr int kObstacleEpochs = 200;  // nmpc's default training epochs with obstacles
+
 struct Options {
   std::string env;
   std::string config;
   walkgen::PpoConfig cfg;  // the settings in effect: defaults, then --config, then options
   std::string out = ".";
   int obstacles = 0;
+  // The environment's settings beyond the thesis's; the defaults with obstacles are in
+  // apply_obstacle_defaults().
+  bool observe_motion = false;
+  double obstacle_weight = 0.0;
+  double success_reward = walkgen::NmpcGoalSettings{}.success_reward;
   bool resume = false;
   int stop_after = 0;
   int world_size = 1, rank = 0, master_port = 29500;
@@ -93,6 +107,19 @@ struct Options {
 
 std::string env_name(const Options& o) {
   return o.env == "nmpc" && o.obstacles > 0 ? "nmpc_obstacles" : o.env;
+}
+
+// The environment's settings that the PPO config does not hold, as the command line that gives
+// them: part of the settings hashes, and a comment atop <out>/config_<env>.yaml.
+std::string env_key(const Options& o) {
+  std::ostringstream k;
+  k << o.env;
+  if (o.env == "nmpc") {
+    k << " --obstacles " << o.obstacles
+      << (o.observe_motion ? " --observe-motion" : " --no-observe-motion") << " --success-reward "
+      << o.success_reward << " --obstacle-weight " << o.obstacle_weight;
+  }
+  return k.str() + "\n";
 }
 
 // "1m05s", "42s": the time left, for the progress bar.
@@ -137,18 +164,20 @@ constexpr const char* kLogHeader =
     "policy_loss,value_loss,entropy,approx_kl,clip_fraction,total_steps,success_rate,elapsed,"
     "updates\n";
 
-// Trains o.cfg.run.epochs epochs; writes the CSV log (rank 0). With a `validate` score (higher
-// is better, e.g. test-mode wins on a validation environment), the policy of the best epoch is
-// kept (the thesis also kept its best network); otherwise the last one. Saves it
+// Trains o.cfg.run.epochs epochs; writes the CSV log (rank 0). With a `validate(epoch)` score
+// (higher is better, e.g. test-mode wins on validation goals; nullopt: this epoch is not
+// validated), the policy of the best validated epoch is kept (the thesis also kept its best
+// network); otherwise the last one. Saves it
 // (TorchPpo::save replaces the file atomically: a crash mid-save leaves the previous policy).
 // Every checkpoint_every epochs a checkpoint (TorchPpo::save_checkpoint) lets --resume continue.
 // Returns false when --stop-after ended the run early.
 template <class Env>
 bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& pool,
            const Options& o, const std::string& policy_path,
-           const std::function<double()>& validate = nullptr) {
+           const std::function<std::optional<double>(int epoch)>& validate = nullptr) {
   const walkgen::PpoRunSettings& run = o.cfg.run;
   walkgen::PpoTrainer<Env> trainer(ppo, envs, run.rollout_steps, &pool);
+  ppo.set_total_updates(run.epochs * trainer.updates_per_epoch(run.steps));
   const std::string csv = o.out + "/learning_" + env_name(o) + ".csv";
   const std::string checkpoint = o.out + "/checkpoint_" + env_name(o) + ".pt";
   double best = -1e300, elapsed = 0.0, total_steps = 0.0;
@@ -225,9 +254,10 @@ bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& po
     elapsed += ep.seconds;
     total_steps += static_cast<double>(ep.steps);
     if (o.lead()) {
-      const double score = validate ? validate() : 0.0;
-      if (!validate || score >= best) {
-        best = score;
+      const std::optional<double> score =
+          validate ? validate(ep.epoch) : std::optional<double>(0.0);
+      if (score && *score >= best) {
+        best = *score;
         best_epoch = ep.epoch;
         ppo.save(policy_path);
       }
@@ -281,10 +311,10 @@ bool train(walkgen::TorchPpo& ppo, std::vector<Env>& envs, walkgen::StepPool& po
   if (o.lead()) {
     std::printf(
         "trained %s: %d epochs, %.0f steps in %.1f s (%.0f environment steps/s, %d process%s), "
-        "log %s, policy of epoch %d saved to %s\n",
+        "log %s, policy of epoch %d (validation score %g) saved to %s\n",
         env_name(o).c_str(), run.epochs, total_steps, elapsed,
         total_steps / std::max(1e-9, elapsed), o.world_size, o.world_size > 1 ? "es" : "",
-        csv.c_str(), best_epoch, policy_path.c_str());
+        csv.c_str(), best_epoch, validate ? best : 0.0, policy_path.c_str());
     ppo.load_parameters(policy_path);
   }
   return true;
@@ -315,7 +345,7 @@ int run_benchmark(const Options& o) {
     // Validation: test mode (policy mean) for 2000 steps on goals apart from the test's.
     walkgen::PointGoalSettings validation_settings = env_settings;
     validation_settings.max_steps = 200;
-    const auto validate = [&]() {
+    const auto validate = [&](int) -> std::optional<double> {
       walkgen::PointGoalEnv env(validation_settings, o.cfg.run.validation_seed);
       const auto t = walkgen::evaluate_steps(ppo, env, 2000);
       return double(t.wins) - 10.0 * t.losses - t.truncations;
@@ -360,9 +390,53 @@ int run_benchmark(const Options& o) {
   return 0;
 }
 
+constexpr int kValidationGoals = 50;  // nmpc: goals of each validation ...
+constexpr int kValidationEvery = 5;   // ... every this many epochs and after the last
+
+// How the policy mean did on a goal set (NmpcGoalEnv), goal by goal.
+struct GoalOutcomes {
+  std::vector<walkgen::PpoTaskResult> results;
+  std::vector<double> clearance;      // smallest footstep-circle distance (inf: no obstacle)
+  std::vector<double> end_clearance;  // the CoM's distance to the nearest R + m at the end
+  std::vector<double> end_speed;      // the CoM's speed at the end [m/s]
+  std::vector<char> reached_goal;     // success with no footstep inside an obstacle
+  int reached = 0;
+};
+
+// The policy mean on `tasks` (NmpcGoalTask), the environments stepped on the pool.
+template <class Env, class Task>
+GoalOutcomes reached_goals(walkgen::TorchPpo& ppo, std::vector<Env>& envs,
+                           const std::vector<Task>& tasks, walkgen::StepPool& pool) {
+  GoalOutcomes g;
+  const std::size_t n = tasks.size();
+  g.clearance.assign(n, 0.0);
+  g.end_clearance.assign(n, std::numeric_limits<double>::infinity());
+  g.end_speed.assign(n, 0.0);
+  g.results = walkgen::evaluate_tasks<Env, Task>(
+      ppo, envs, tasks, &pool, [&](std::size_t i, const Env& env) {
+        g.clearance[i] = env.min_obstacle_clearance();
+        // where the episode ended: a failed QP at a circle's edge at speed came too late to turn
+        for (const auto& ob : env.obstacles())
+          g.end_clearance[i] =
+              std::min(g.end_clearance[i], (env.position() - Eigen::Vector2d(ob.x, ob.y)).norm() -
+                                               ob.radius - ob.margin);
+        const auto& st = env.mpc().state();
+        g.end_speed[i] = std::hypot(st.com_x[1], st.com_y[1]);
+      });
+  g.reached_goal.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    g.reached_goal[i] = g.results[i].end == walkgen::EpisodeEnd::success && g.clearance[i] >= 0.0;
+    g.reached += g.reached_goal[i];
+  }
+  return g;
+}
+
 int run_nmpc(const Options& o) {
   walkgen::NmpcGoalSettings env_settings;
   env_settings.obstacles = o.obstacles;
+  env_settings.observe_motion = o.observe_motion;
+  env_settings.obstacle_weight = o.obstacle_weight;
+  env_settings.success_reward = o.success_reward;
   if (o.obstacles > 0) {
     env_settings.goal_min_distance = 1.0;
     env_settings.goal_max_distance = 2.0;
@@ -370,7 +444,7 @@ int run_nmpc(const Options& o) {
   const int E = local_envs(o);
   using Env = walkgen::NmpcGoalEnv<16>;
   walkgen::StepPool pool(o.cfg.run.threads);
-  const int obs_size = 2 + 3 * o.obstacles;
+  const int obs_size = Env(env_settings, 0).observation_size();
   walkgen::PpoSettings s = o.cfg.ppo;
   s.seed = o.cfg.run.seed;
   walkgen::TorchPpo ppo =
@@ -380,7 +454,20 @@ int run_nmpc(const Options& o) {
     std::vector<Env> envs;
     envs.reserve(E);
     for (int e = 0; e < E; ++e) envs.emplace_back(env_settings, 0);  // seeded by the trainer
-    if (!train(ppo, envs, pool, o, o.out + "/ppo_" + env_name(o) + ".pt")) return 0;
+    // Validation every kValidationEvery epochs and after the last: the policy mean on
+    // kValidationGoals goals of run.validation_seed (apart from training's and the test's);
+    // the best of these epochs is kept (the later one on a tie).
+    std::vector<walkgen::NmpcGoalTask> validation_goals;
+    Env drawer(env_settings, o.cfg.run.validation_seed);
+    for (int g = 0; g < kValidationGoals; ++g) validation_goals.push_back(drawer.sample_task());
+    const auto validate = [&](int epoch) -> std::optional<double> {
+      if (epoch % kValidationEvery != 0 && epoch != o.cfg.run.epochs) return std::nullopt;
+      std::vector<Env> venvs;
+      venvs.reserve(static_cast<std::size_t>(std::max(1, o.cfg.run.envs)));
+      for (int e = 0; e < std::max(1, o.cfg.run.envs); ++e) venvs.emplace_back(env_settings, 0);
+      return double(reached_goals(ppo, venvs, validation_goals, pool).reached);
+    };
+    if (!train(ppo, envs, pool, o, o.out + "/ppo_" + env_name(o) + ".pt", validate)) return 0;
   }
   if (!o.lead()) return 0;
   const int test_envs = std::max(1, o.cfg.run.envs);
@@ -391,18 +478,14 @@ int run_nmpc(const Options& o) {
     envs.emplace_back(env_settings, o.cfg.run.evaluation_seed + e);
   std::vector<walkgen::NmpcGoalTask> tasks;
   for (int g = 0; g < o.test_goals; ++g) tasks.push_back(envs[0].sample_task());
-  std::vector<double> clearance(tasks.size(), 0.0);
-  const auto results = walkgen::evaluate_tasks<Env, walkgen::NmpcGoalTask>(
-      ppo, envs, tasks, &pool,
-      [&](std::size_t i, const Env& env) { clearance[i] = env.min_obstacle_clearance(); });
-  int reached = 0, failed = 0, inside = 0, behind = 0, behind_reached = 0;
+  const GoalOutcomes out = reached_goals(ppo, envs, tasks, pool);
+  int failed = 0, inside = 0, behind = 0, behind_reached = 0;
   std::ofstream test(o.out + "/test_" + env_name(o) + ".csv");
-  test << "goal,goal_x,goal_y,end,steps,reward,min_clearance\n";
+  test << "goal,goal_x,goal_y,end,steps,reward,min_clearance,end_clearance,end_speed\n";
   for (std::size_t i = 0; i < tasks.size(); ++i) {
-    const auto& r = results[i];
-    const bool in = o.obstacles > 0 && clearance[i] < 0.0;
-    const bool ok = r.end == walkgen::EpisodeEnd::success && !in;
-    reached += ok;
+    const auto& r = out.results[i];
+    const bool in = out.clearance[i] < 0.0;
+    const bool ok = out.reached_goal[i] != 0;
     failed += r.end == walkgen::EpisodeEnd::failure;
     inside += in;
     if (tasks[i].goal.x() < 0.0) {
@@ -411,12 +494,13 @@ int run_nmpc(const Options& o) {
     }
     test << i << ',' << tasks[i].goal.x() << ',' << tasks[i].goal.y() << ','
          << walkgen::to_string(r.end) << ',' << r.steps << ',' << r.reward << ','
-         << (o.obstacles > 0 ? clearance[i] : 0.0) << '\n';
+         << (o.obstacles > 0 ? out.clearance[i] : 0.0) << ','
+         << (o.obstacles > 0 ? out.end_clearance[i] : 0.0) << ',' << out.end_speed[i] << '\n';
   }
   std::printf(
       "test mode (policy mean) on %d held-out goals: %d reached (%d of %d behind the "
       "robot), %d QP failures, %d with a footstep inside an obstacle\n",
-      o.test_goals, reached, behind_reached, behind, failed, inside);
+      o.test_goals, out.reached, behind_reached, behind, failed, inside);
   // Figure 11.19: four goals, CoM paths and footsteps.
   std::ofstream traj(o.out + "/trajectories_" + env_name(o) + ".csv");
   traj << "case,tick,com_x,com_y,heading,foot_x,foot_y,foot_q,goal_x,goal_y,v_x,omega\n";
@@ -434,7 +518,7 @@ int run_nmpc(const Options& o) {
       obst << c << ',' << ob.x << ',' << ob.y << ',' << ob.radius << ',' << ob.margin << '\n';
     }
     env.reset(task);
-    std::vector<float> obs(static_cast<std::size_t>(obs_size));  // 2 + 3 per obstacle
+    std::vector<float> obs(static_cast<std::size_t>(obs_size));
     float act[2];
     for (;;) {
       env.observe(obs.data());
@@ -454,6 +538,20 @@ int run_nmpc(const Options& o) {
     }
   }
   return 0;
+}
+
+// With obstacles (beyond the thesis, docs/learning.md "With obstacles"): the robot's motion in
+// the state, a success reward as large as the failure penalty (with the thesis's 100 a policy
+// that stalls at an obstacle's edge or circles 0.25 m from the goal earned nearly as much as
+// one that arrives), a step size annealed to 0 and longer training. Options given on the
+// command line and in --config win.
+void apply_obstacle_defaults(Options& o, const CLI::App& app) {
+  if (o.env != "nmpc" || o.obstacles == 0) return;
+  if (app.count("--observe-motion") == 0 && app.count("--no-observe-motion") == 0)
+    o.observe_motion = true;
+  if (app.count("--success-reward") == 0) o.success_reward = 1e4;
+  o.cfg.ppo.anneal_learning_rate = true;  // before --config
+  o.cfg.run.epochs = kObstacleEpochs;     // before --config and --epochs
 }
 
 // The thesis's settings of each environment (docs/learning.md), before --config and options.
@@ -499,6 +597,7 @@ std::string config_yaml(const walkgen::PpoConfig& c) {
     << "\n  max_grad_norm: " << c.ppo.max_grad_norm << "\n  target_kl: " << c.ppo.target_kl
     << "\n  reward_scale: " << c.ppo.reward_scale
     << "\n  normalize_advantages: " << (c.ppo.normalize_advantages ? "true" : "false")
+    << "\n  anneal_learning_rate: " << (c.ppo.anneal_learning_rate ? "true" : "false")
     << "\nrun:\n  epochs: " << c.run.epochs << "\n  steps: " << c.run.steps
     << "\n  envs: " << c.run.envs << "\n  rollout_steps: " << c.run.rollout_steps
     << "\n  threads: " << c.run.threads << "\n  seed: " << c.run.seed
@@ -538,7 +637,9 @@ int main(int argc, char** argv) {
       if (option->count() > 0) apply();
     });
   };
-  run_option("--epochs", cli.epochs, 1, "training epochs, >= 1 (default: benchmark 50, nmpc 30)",
+  run_option("--epochs", cli.epochs, 1,
+             "training epochs, >= 1 (default: benchmark 50, nmpc 30, "
+             "with obstacles 200)",
              [&] { o.cfg.run.epochs = cli.epochs; });
   run_option("--steps", cli.steps, 1,
              "steps per epoch over all processes, >= 1, rounded up to whole updates (default: "
@@ -557,6 +658,17 @@ int main(int argc, char** argv) {
              [&] { o.cfg.run.threads = cli.threads; });
   app.add_option("--obstacles", o.obstacles, "nmpc: circular obstacles per episode, >= 0")
       ->transform(walkgen_examples::decimal_at_least<int>(0));
+  app.add_flag("--observe-motion,!--no-observe-motion", o.observe_motion,
+               "nmpc: the state adds the robot's motion (CoM velocity, command, support foot, "
+               "step phase; NmpcGoalSettings::observe_motion; default: on with obstacles)");
+  app.add_option("--obstacle-weight", o.obstacle_weight,
+                 "nmpc: weight of the shaping term near obstacles, >= 0 "
+                 "(NmpcGoalSettings::obstacle_weight; default 0)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--success-reward", o.success_reward,
+                 "nmpc: reward for reaching the goal (NmpcGoalSettings::success_reward; "
+                 "default: 100 as the thesis, 10000 with obstacles)")
+      ->check(CLI::NonNegativeNumber);
   run_option("--checkpoint-every", cli.checkpoint_every, 0,
              "epochs between checkpoints, 0: none (default 1)",
              [&] { o.cfg.run.checkpoint_every = cli.checkpoint_every; });
@@ -614,6 +726,7 @@ int main(int argc, char** argv) {
   int rc = 0;
   try {
     o.cfg = defaults_for(o.env);
+    apply_obstacle_defaults(o, app);
     if (!o.config.empty()) o.cfg = walkgen::load_ppo_config(o.config, o.cfg);
     for (const auto& apply : overrides) apply();
     walkgen::validate(o.cfg.run);
@@ -638,14 +751,12 @@ int main(int argc, char** argv) {
       resumable.run.epochs = 1;
       resumable.run.threads = 1;
       resumable.run.checkpoint_every = 0;
-      const std::string key =
-          o.env + " obstacles " + std::to_string(o.obstacles) + "\n" + config_yaml(resumable);
+      const std::string key = env_key(o) + config_yaml(resumable);
       o.settings_hash = walkgen::text_hash(key.data(), key.size());
     }
 #if WALKGEN_HAS_DISTRIBUTED
     if (o.communicator != nullptr) {  // the same settings everywhere, or every rank stops here
-      const std::string all = o.env + " obstacles " + std::to_string(o.obstacles) + "\n" +
-                              config_yaml(o.cfg) + (o.resume ? "resume" : "") +
+      const std::string all = env_key(o) + config_yaml(o.cfg) + (o.resume ? "resume" : "") +
                               std::to_string(o.stop_after);
       walkgen::check_same_on_all_processes(*o.communicator,
                                            walkgen::text_hash(all.data(), all.size()),
@@ -654,7 +765,7 @@ int main(int argc, char** argv) {
 #endif
     if (o.lead() && o.policy.empty()) {
       const std::string path = o.out + "/config_" + env_name(o) + ".yaml";
-      write_text(path, config_yaml(o.cfg));
+      write_text(path, "# environment: ppo_train " + env_key(o) + config_yaml(o.cfg));
     }
     rc = o.env == "benchmark" ? run_benchmark(o) : run_nmpc(o);
   } catch (const std::exception& e) {

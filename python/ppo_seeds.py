@@ -7,7 +7,9 @@ wall time of training and test).
     /usr/bin/python3 python/ppo_seeds.py --ppo-train build/release/examples/ppo_train \\
         --out docs/results/ppo_seeds.csv --work ppo_seeds_runs --seeds 1 2 3 4 5 --require 0.95
 
-Each run is `ppo_train nmpc --seed S` (and `--obstacles 1 --epochs 80` for nmpc_obstacles);
+--jobs J trains J seeds at once (one thread each; a seed's result is the same either way).
+Each run is `ppo_train nmpc --seed S` (and `--obstacles 1`, with its defaults: the robot's
+motion in the state, success reward 10 000, an annealed step size, 200 epochs, for nmpc_obstacles);
 success is measured on the 100 held-out goals of `run.evaluation_seed`, which training never
 draws. --epochs and --test-goals shorten the runs (the ctest ppo_seeds_short does). The CSV is
 written atomically (a temporary file renamed over it) after every run, so an interrupted study
@@ -23,7 +25,7 @@ import time
 
 ENVS = {  # env name -> ppo_train arguments and training epochs (docs/learning.md)
     "nmpc": (["nmpc"], 30),
-    "nmpc_obstacles": (["nmpc", "--obstacles", "1"], 80),
+    "nmpc_obstacles": (["nmpc", "--obstacles", "1"], 200),
 }
 COLUMNS = ["env", "seed", "success_rate", "reached", "goals", "qp_failures", "timeouts",
            "seconds"]
@@ -60,15 +62,16 @@ def main():
     p.add_argument("--epochs", type=int, help="override the epochs (short runs)")
     p.add_argument("--steps", type=int, help="override the steps per epoch (short runs)")
     p.add_argument("--test-goals", type=int, default=100)
+    p.add_argument("--jobs", type=int, default=1,
+                   help="runs at once, each on one thread (the results do not change)")
     p.add_argument("--require", type=float,
                    help="exit 1 unless every run's success rate is at least this")
     a = p.parse_args()
     if not os.access(a.ppo_train, os.X_OK):
         sys.exit("ppo_seeds: %s is not an executable (build ppo_train first)" % a.ppo_train)
-    if a.test_goals < 1 or (a.epochs is not None and a.epochs < 1):
-        sys.exit("ppo_seeds: --test-goals and --epochs must be >= 1")
-    rows = []
-    total = len(a.envs) * len(a.seeds)
+    if a.test_goals < 1 or a.jobs < 1 or (a.epochs is not None and a.epochs < 1):
+        sys.exit("ppo_seeds: --test-goals, --jobs and --epochs must be >= 1")
+    runs = []  # (env, seed, command line, output folder) in the CSV's order
     for env in a.envs:
         for seed in a.seeds:
             out = os.path.join(a.work, "%s_seed%d" % (env, seed))
@@ -78,20 +81,41 @@ def main():
                                                "--epochs", str(a.epochs or epochs)]
             if a.steps is not None:
                 args += ["--steps", str(a.steps)]
-            print("[%d/%d] %s" % (len(rows) + 1, total, " ".join(args[1:])), flush=True)
-            start = time.monotonic()
-            run = subprocess.run(args, capture_output=True, text=True, check=False)
-            if run.returncode != 0:
-                sys.exit("ppo_seeds: %s failed (%d):\n%s" % (" ".join(args), run.returncode,
-                                                             run.stderr))
-            r = result(os.path.join(out, "test_%s.csv" % env))
-            r.update(env=env, seed=seed, success_rate="%.2f" % (r["reached"] / r["goals"]),
-                     seconds="%.0f" % (time.monotonic() - start))
-            rows.append(r)
-            print("        success %s (%d of %d; %d QP failures, %d out of time), %s s"
-                  % (r["success_rate"], r["reached"], r["goals"], r["qp_failures"],
-                     r["timeouts"], r["seconds"]), flush=True)
-            write_atomically(a.out, rows)
+            if a.jobs > 1:  # one thread per run (a seed's result does not depend on it)
+                args += ["--threads", "1"]
+            runs.append((env, seed, args, out))
+    done = {}  # run index -> CSV row
+
+    def finish(i, proc, start):
+        env, seed, args, out = runs[i]
+        if proc.returncode != 0:
+            with open(os.path.join(out, "stderr.txt")) as f:
+                sys.exit("ppo_seeds: %s failed (%d):\n%s" % (" ".join(args), proc.returncode,
+                                                              f.read()))
+        r = result(os.path.join(out, "test_%s.csv" % env))
+        r.update(env=env, seed=seed, success_rate="%.2f" % (r["reached"] / r["goals"]),
+                 seconds="%.0f" % (time.monotonic() - start))
+        done[i] = r
+        print("[%d/%d] %s seed %d: success %s (%d of %d; %d QP failures, %d out of time), %s s"
+              % (len(done), len(runs), env, seed, r["success_rate"], r["reached"], r["goals"],
+                 r["qp_failures"], r["timeouts"], r["seconds"]), flush=True)
+        write_atomically(a.out, [done[k] for k in sorted(done)])
+
+    running = {}  # run index -> (process, start)
+    for i, (env, seed, args, out) in enumerate(runs):
+        while len(running) >= a.jobs:  # wait for a free slot
+            time.sleep(0.5)
+            for k in [k for k, (proc, _) in running.items() if proc.poll() is not None]:
+                finish(k, *running.pop(k))
+        print("started %s" % " ".join(args[1:]), flush=True)
+        os.makedirs(out, exist_ok=True)
+        with open(os.path.join(out, "stderr.txt"), "w") as err:  # the child keeps its own copy
+            proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=err)
+        running[i] = (proc, time.monotonic())
+    for k in sorted(running):
+        running[k][0].wait()
+        finish(k, *running[k])
+    rows = [done[k] for k in sorted(done)]
     worst = min(float(r["success_rate"]) for r in rows)
     print("ppo_seeds: %d runs, lowest success rate %.2f, written to %s" % (len(rows), worst, a.out))
     if a.require is not None and worst < a.require:

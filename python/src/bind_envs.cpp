@@ -239,6 +239,9 @@ void bind_envs(py::module_& m) {
       .def_readwrite("obstacle_margin", &NmpcGoalSettings::obstacle_margin)
       .def_readwrite("obstacle_lateral", &NmpcGoalSettings::obstacle_lateral)
       .def_readwrite("obstacle_clearance", &NmpcGoalSettings::obstacle_clearance)
+      .def_readwrite("observe_motion", &NmpcGoalSettings::observe_motion)
+      .def_readwrite("obstacle_weight", &NmpcGoalSettings::obstacle_weight)
+      .def_readwrite("obstacle_shaping_distance", &NmpcGoalSettings::obstacle_shaping_distance)
       .def("validate", [](const NmpcGoalSettings& s) { validate(s); })
       .def("copy", [](const NmpcGoalSettings& s) { return NmpcGoalSettings(s); });
 

@@ -136,6 +136,21 @@ def test_nmpc_env_footsteps_walk_around_an_obstacle_or_fail_honestly():
     assert info["min_obstacle_clearance"] > 0.15
 
 
+def test_nmpc_env_motion_in_the_state():
+    """observe_motion adds 7 numbers: the CoM velocity in the robot frame, the action in
+    effect, the support foot and the step's elapsed fraction."""
+    env = envs.NmpcGoalEnv(seed=4, obstacles=1, observe_motion=True, max_steps=100)
+    assert env.observation_space.shape == (12,)
+    aside = walkgen.CircleObstacle(1.0, 0.3, 0.15, 0.15)
+    obs, _ = env.reset(options={"goal": (2.0, 0.1), "obstacles": [aside]})
+    assert obs[5:9].tolist() == [0.0, 0.0, 0.0, 0.0]  # standing, no command yet
+    for _ in range(10):
+        obs, _, terminated, truncated, info = env.step(np.array([1.0, 0.0]))
+        assert not (terminated or truncated)
+    assert obs[5] > 0.05 and obs[7] == pytest.approx(1.0)  # walking forward on a full command
+    assert 0.0 <= obs[11] < 1.0
+
+
 def test_nmpc_env_same_seed_same_episode():
     def run(seed):
         env = envs.NmpcGoalEnv(seed=seed)

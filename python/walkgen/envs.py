@@ -255,8 +255,12 @@ def _settings(kind, settings, fields):
 
 def _nmpc_spaces(s):
     inf = np.inf
-    low = [-inf, -inf] + [-inf, -inf, 0.0] * s.obstacles
-    high = [inf] * (2 + 3 * s.obstacles)
+    # the goal, per obstacle its centre and R + m, then (observe_motion) the CoM velocity, the
+    # action in effect, the support foot and the step's elapsed fraction
+    motion_low = [-inf, -inf, -1.0, -1.0, -inf, -inf, 0.0] if s.observe_motion else []
+    motion_high = [inf, inf, 1.0, 1.0, inf, inf, 1.0] if s.observe_motion else []
+    low = [-inf, -inf] + [-inf, -inf, 0.0] * s.obstacles + motion_low
+    high = [inf] * (2 + 3 * s.obstacles) + motion_high
     return _box(low, high), _box([-1.0, -1.0], [1.0, 1.0])
 
 

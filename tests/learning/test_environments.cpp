@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -177,6 +179,92 @@ TEST(NmpcGoalEnv, ObstaclesAreInTheStateAndKeptOutOfByTheFootsteps) {
   EXPECT_GE(env.min_obstacle_clearance(), 0.15 - 2e-3);  // the margin, up to the SQP tolerance
   task.obstacles.clear();
   EXPECT_THROW(env.reset(task), walkgen::invalid_argument);
+}
+
+TEST(NmpcGoalEnv, TheMotionInTheStateIsTheRobotsVelocityCommandFootAndPhase) {
+  walkgen::NmpcGoalSettings s;
+  s.obstacles = 1;
+  s.observe_motion = true;
+  walkgen::NmpcGoalEnv<16> env(s, 9);
+  ASSERT_EQ(env.observation_size(), 2 + 3 + 7);
+  walkgen::NmpcGoalTask task;
+  task.goal = Eigen::Vector2d(2.0, 1.0);
+  task.obstacles.push_back({1.0, -0.6, 0.15, 0.15});
+  env.reset(task);
+  float obs[12];
+  env.observe(obs);
+  // the support foot in the robot frame, R_z(θ)ᵀ (F − c)
+  const auto expect_foot = [&env](const float* o) {
+    const auto& st = env.mpc().state();
+    const double q = env.heading(), c = std::cos(q), sn = std::sin(q);
+    const Eigen::Vector2d f(st.support.x - env.position().x(), st.support.y - env.position().y());
+    EXPECT_NEAR(o[9], c * f.x() + sn * f.y(), 1e-6);
+    EXPECT_NEAR(o[10], -sn * f.x() + c * f.y(), 1e-6);
+  };
+  // standing: no velocity, no command, the step not begun
+  EXPECT_NEAR(obs[5], 0.0f, 1e-9);
+  EXPECT_NEAR(obs[6], 0.0f, 1e-9);
+  EXPECT_EQ(obs[7], 0.0f);
+  EXPECT_EQ(obs[8], 0.0f);
+  EXPECT_EQ(obs[11], 0.0f);
+  expect_foot(obs);
+  const float act[2] = {0.8f, 2.5f};  // the turn rate clipped to 1
+  for (int k = 0; k < 12; ++k) ASSERT_EQ(env.step(act).end, walkgen::EpisodeEnd::none);
+  env.observe(obs);
+  const auto& st = env.mpc().state();
+  const double q = env.heading(), c = std::cos(q), sn = std::sin(q);
+  // the CoM velocity rotated into the robot frame: forward and positive when walking on
+  EXPECT_NEAR(obs[5], c * st.com_x[1] + sn * st.com_y[1], 1e-6);
+  EXPECT_NEAR(obs[6], -sn * st.com_x[1] + c * st.com_y[1], 1e-6);
+  EXPECT_GT(obs[5], 0.05);
+  EXPECT_FLOAT_EQ(obs[7], 0.8f);
+  EXPECT_FLOAT_EQ(obs[8], 1.0f);
+  expect_foot(obs);
+  EXPECT_GT(std::hypot(obs[9], obs[10]), 0.02);  // walking: the CoM swings off the foot
+  EXPECT_NEAR(obs[11], double(st.phase) / s.walking.samples_per_step(), 1e-7);
+  EXPECT_GE(obs[11], 0.0f);
+  EXPECT_LT(obs[11], 1.0f);
+  // a non-finite action is no command
+  const float nan_act[2] = {std::numeric_limits<float>::quiet_NaN(), 0.0f};
+  ASSERT_EQ(env.step(nan_act).end, walkgen::EpisodeEnd::none);
+  env.observe(obs);
+  EXPECT_EQ(obs[7], 0.0f);
+  // without observe_motion the state is the thesis's (goal) plus the obstacles
+  s.observe_motion = false;
+  EXPECT_EQ(walkgen::NmpcGoalEnv<16>(s, 9).observation_size(), 5);
+}
+
+TEST(NmpcGoalEnv, ObstacleShapingIsThePotentialDifferenceAndSumsToTheEndsPotential) {
+  walkgen::NmpcGoalSettings plain;
+  plain.obstacles = 1;
+  walkgen::NmpcGoalSettings shaped = plain;
+  shaped.obstacle_weight = 2e3;
+  shaped.obstacle_shaping_distance = 0.3;
+  walkgen::NmpcGoalEnv<16> a(plain, 3), b(shaped, 3);
+  walkgen::NmpcGoalTask task;
+  task.goal = Eigen::Vector2d(2.0, 0.0);
+  task.obstacles.push_back({1.0, 0.0, 0.15, 0.15});  // straight ahead: R + m = 0.3
+  a.reset(task);
+  b.reset(task);
+  const auto phi = [&](const walkgen::NmpcGoalEnv<16>& e) {
+    const double c = (e.position() - Eigen::Vector2d(1.0, 0.0)).norm() - 0.3;
+    return -2e3 * std::max(0.0, 1.0 - c / 0.3);
+  };
+  EXPECT_EQ(phi(b), 0.0);  // starts 0.7 m from the circle: outside the shaping distance
+  const float forward[2] = {1.0f, 0.0f};
+  double sum = 0.0;
+  for (int k = 0; k < 60; ++k) {
+    const walkgen::EnvStep ra = a.step(forward), rb = b.step(forward);
+    ASSERT_EQ(ra.end, rb.end);
+    sum += rb.reward - ra.reward;
+    if (rb.done()) break;
+  }
+  // the footsteps stop at the circle; the CoM walked into the shaping zone, so the shaped
+  // returns are lower by exactly −Φ at the end (the shaping telescopes)
+  EXPECT_LT(phi(b), -500.0);
+  EXPECT_NEAR(sum, phi(b), 1e-6 * 2e3);
+  shaped.obstacle_shaping_distance = 0.0;
+  EXPECT_THROW(walkgen::NmpcGoalEnv<16>(shaped, 3), walkgen::invalid_argument);
 }
 
 }  // namespace

@@ -148,6 +148,39 @@ def test_config_file_and_options(tmp_path):
     assert str(config) + ":2" in bad.stderr
 
 
+def test_obstacle_defaults_and_environment_options(tmp_path):
+    """With obstacles the state adds the robot's motion (12 inputs), the success reward is
+    10 000 and the step size is annealed over 200 epochs; --no-observe-motion gives the thesis's state plus the obstacle (5 inputs); the
+    written config names the environment's options and a resumed run must share them."""
+    import torch  # Debian's python3-torch (scripts/setup.sh)
+    base = ["nmpc", "--obstacles", "1", "--steps", "2048", "--test-goals", "2", "--quiet"]
+    short = base + ["--epochs", "1"]
+    for extra, inputs in (([], 12), (["--no-observe-motion"], 5)):
+        out = tmp_path / ("motion" if not extra else "plain")
+        r = run(short + extra + ["--out", str(out)])
+        assert r.returncode == 0, r.stderr
+        policy = torch.jit.load(str(out / "ppo_nmpc_obstacles.pt"))
+        first = next(p for p in policy.parameters() if p.dim() == 2)  # the first layer's weights
+        assert first.shape[1] == inputs, (extra, first.shape)
+        config = (out / "config_nmpc_obstacles.yaml").read_text()
+        assert config.splitlines()[0] == (
+            "# environment: ppo_train nmpc --obstacles 1 "
+            + ("--no-observe-motion" if extra else "--observe-motion")
+            + " --success-reward 10000 --obstacle-weight 0"), config
+        assert "epochs: 1" in config
+    # the run's defaults with obstacles: 200 epochs, the step size annealed
+    r = run(base + ["--stop-after", "1", "--out", str(tmp_path / "defaults")])
+    assert r.returncode == 0, r.stderr
+    written = (tmp_path / "defaults" / "config_nmpc_obstacles.yaml").read_text()
+    assert "epochs: 200" in written and "anneal_learning_rate: true" in written
+    # a checkpoint made with one success reward is not resumed with another
+    r = run(base + ["--stop-after", "1", "--epochs", "2", "--out", str(tmp_path / "resume")])
+    assert r.returncode == 0, r.stderr
+    r = run(base + ["--epochs", "2", "--resume", "--success-reward", "50",
+                     "--out", str(tmp_path / "resume")])
+    assert r.returncode == 1 and "settings" in r.stderr, r.stderr
+
+
 def test_bad_command_lines():
     """Each is refused at once, naming what is wrong, before any rank waits for another."""
     cases = ((["nmpc", "--world-size", "2", "--rank", "2"], "--rank"),

@@ -265,6 +265,20 @@ TEST(TorchPpo, EnumStrings) {
 // An update says how it ended: every epoch's minibatches (updated), or stopped at the first
 // minibatch whose KL estimate exceeds target_kl (kl_stopped), here at once: the rollout's log
 // probabilities are 1 below the policy's, a KL estimate of e − 2 ≈ 0.72.
+// 8 steps of 2 environments (4 observations, 2 actions) acted by `ppo`, with log-probabilities
+// shifted so that the update's ratios differ from 1.
+walkgen::PpoRollout small_rollout(walkgen::TorchPpo& ppo) {
+  walkgen::PpoRollout r;
+  r.resize(8, 2, 4, 2);
+  for (std::size_t i = 0; i < r.observations.size(); ++i) {
+    r.observations[i] = 0.1f * static_cast<float>(i % 7);
+  }
+  ppo.act(r.observations.data(), 16, false, r.actions.data(), r.log_probs.data(), r.values.data());
+  for (float& lp : r.log_probs) lp -= 1.0f;
+  for (std::size_t i = 0; i < r.rewards.size(); ++i) r.rewards[i] = static_cast<float>(i % 3);
+  return r;
+}
+
 TEST(TorchPpo, UpdateReportsHowItEnded) {
   walkgen::PpoSettings s;
   s.epochs = 2;
@@ -272,16 +286,7 @@ TEST(TorchPpo, UpdateReportsHowItEnded) {
   for (const double target_kl : {0.0, 0.1}) {
     s.target_kl = target_kl;
     walkgen::TorchPpo ppo(4, 2, s);
-    walkgen::PpoRollout r;
-    r.resize(8, 2, 4, 2);
-    for (std::size_t i = 0; i < r.observations.size(); ++i) {
-      r.observations[i] = 0.1f * static_cast<float>(i % 7);
-    }
-    ppo.act(r.observations.data(), 16, false, r.actions.data(), r.log_probs.data(),
-            r.values.data());
-    for (float& lp : r.log_probs) lp -= 1.0f;
-    for (std::size_t i = 0; i < r.rewards.size(); ++i) r.rewards[i] = static_cast<float>(i % 3);
-    const walkgen::PpoUpdateResult u = ppo.update(r);
+    const walkgen::PpoUpdateResult u = ppo.update(small_rollout(ppo));
     if (target_kl == 0.0) {
       EXPECT_EQ(u.status, walkgen::PpoUpdateStatus::updated);
       EXPECT_STREQ(u.message, "");
@@ -375,6 +380,35 @@ TEST(PpoTrainer, ResumedFromACheckpointContinuesExactly) {
   EXPECT_EQ(third_again.wins, third.wins);
   EXPECT_EQ(third_again.mean_reward, third.mean_reward);
   EXPECT_EQ(weights(again), uninterrupted);  // bit for bit: Adam's moments came back too
+}
+
+TEST(TorchPpo, AnnealedLearningRateFallsLinearlyAndIsAdamsStep) {
+  walkgen::PpoSettings s;
+  s.epochs = 1;
+  s.minibatch = 4;
+  s.target_kl = 0.0;
+  s.learning_rate = 1e-3;
+  s.anneal_learning_rate = true;
+  walkgen::TorchPpo ppo(4, 2, s);
+  EXPECT_DOUBLE_EQ(ppo.learning_rate(), 1e-3);  // the run's length not known: constant
+  ppo.set_total_updates(2);
+  const walkgen::PpoRollout r = small_rollout(ppo);
+  EXPECT_DOUBLE_EQ(ppo.learning_rate(), 1e-3);
+  const std::vector<float> w0 = weights(ppo);
+  (void)ppo.update(r);
+  EXPECT_NE(weights(ppo), w0);
+  EXPECT_DOUBLE_EQ(ppo.learning_rate(), 0.5e-3);  // 1 − 1/2
+  (void)ppo.update(r);
+  EXPECT_DOUBLE_EQ(ppo.learning_rate(), 0.0);
+  const std::vector<float> w2 = weights(ppo);
+  (void)ppo.update(r);  // past the run's end the step is 0: Adam leaves the weights
+  EXPECT_EQ(weights(ppo), w2);
+  EXPECT_THROW(ppo.set_total_updates(-1), walkgen::invalid_argument);
+  s.anneal_learning_rate = false;
+  walkgen::TorchPpo constant(4, 2, s);
+  constant.set_total_updates(2);
+  (void)constant.update(small_rollout(constant));
+  EXPECT_DOUBLE_EQ(constant.learning_rate(), 1e-3);
 }
 
 TEST(PpoTrainer, EpochsAreWholeUpdates) {

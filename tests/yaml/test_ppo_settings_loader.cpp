@@ -43,6 +43,7 @@ ppo:
   target_kl: 0.05
   reward_scale: 0.01
   normalize_advantages: false
+  anneal_learning_rate: true
 run:
   epochs: 12
   steps: 4096
@@ -70,6 +71,7 @@ run:
   EXPECT_DOUBLE_EQ(c.ppo.target_kl, 0.05);
   EXPECT_DOUBLE_EQ(c.ppo.reward_scale, 0.01);
   EXPECT_FALSE(c.ppo.normalize_advantages);
+  EXPECT_TRUE(c.ppo.anneal_learning_rate);
   EXPECT_EQ(c.run.epochs, 12);
   EXPECT_EQ(c.run.steps, 4096);
   EXPECT_EQ(c.run.envs, 16);

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -56,6 +57,20 @@ struct NmpcGoalSettings {
   /// sideways by up to this [m], so that it is in the way.
   double obstacle_lateral = 0.2;
   double obstacle_clearance = 0.15;  ///< [m] start and goal stay this far beyond R + m
+  /// Adds the robot's motion to the state (beyond the thesis, whose state is the goal alone):
+  /// the CoM velocity in the robot frame, the command in effect (as the action that gave it),
+  /// the support foot in the robot frame and the fraction of the step elapsed, 7 numbers. The
+  /// NMPC carries momentum: at 0.35 m/s its CoM needs a step or two to stop or turn, so
+  /// whether a footstep can still avoid an obstacle depends on how fast the robot moves and
+  /// where its next step lands, which the goal and obstacle positions alone do not tell.
+  bool observe_motion = false;
+  /// Weight w_obstacle [reward per unit] of a potential-based shaping term (Ng et al. 1999:
+  /// r += Φ(s') − Φ(s), which leaves the optimal policy unchanged) with
+  /// Φ = −w_obstacle Σ_k max(0, 1 − c_k / obstacle_shaping_distance), c_k the CoM's distance to
+  /// obstacle k's circle R + m: walking into an obstacle's neighbourhood costs at once what
+  /// the failed QP at its edge would cost only steps later. 0: no shaping (the thesis).
+  double obstacle_weight = 0.0;
+  double obstacle_shaping_distance = 0.3;  ///< [m] where Φ starts, beyond R + m
 };
 
 /// Checks the NMPC goal environment's settings, the walking settings included (NmpcGoalEnv's
@@ -80,6 +95,8 @@ inline void validate(const NmpcGoalSettings& s) {
   check_non_negative("NmpcGoalSettings.obstacle_margin", s.obstacle_margin);
   check_non_negative("NmpcGoalSettings.obstacle_lateral", s.obstacle_lateral);
   check_non_negative("NmpcGoalSettings.obstacle_clearance", s.obstacle_clearance);
+  check_non_negative("NmpcGoalSettings.obstacle_weight", s.obstacle_weight);
+  check_positive("NmpcGoalSettings.obstacle_shaping_distance", s.obstacle_shaping_distance);
   const std::pair<const char*, double> finite[] = {
       {"NmpcGoalSettings.frontal_weight", s.frontal_weight},
       {"NmpcGoalSettings.goal_weight", s.goal_weight},
@@ -100,12 +117,15 @@ struct NmpcGoalTask {
 
 /// Environment of thesis §11.2.2. State: the goal in the robot frame,
 /// g_a = R_z(θ)ᵀ (g_w − a_w) with a_w the CoM and θ the heading, then per obstacle its centre
-/// in the robot frame and R + m (3 numbers). Action: (v_x, ω_z) ∈ [−1, 1]² (clipped) times
-/// command_fraction · max_command; one step is ticks_per_step NMPC ticks (solve + advance).
-/// The episode ends on success, on the step budget (truncated) or on a failed QP (failure).
-/// Rewards: r_goal = d_{t−1} − d_t (distance of CoM to goal), r_frontal = ĝ_{a,t}[0] −
+/// in the robot frame and R + m (3 numbers), then with NmpcGoalSettings::observe_motion the
+/// motion (7 numbers: CoM velocity in the robot frame [m/s], the action in effect, the support
+/// foot in the robot frame [m], the elapsed fraction of the step). Action: (v_x, ω_z) ∈ [−1, 1]²
+/// (clipped) times command_fraction · max_command; one step is ticks_per_step NMPC ticks (solve +
+/// advance). The episode ends on success, on the step budget (truncated) or on a failed QP
+/// (failure). Rewards: r_goal = d_{t−1} − d_t (distance of CoM to goal), r_frontal = ĝ_{a,t}[0] −
 /// ĝ_{a,t−1}[0] with ĝ_a the unit direction to the goal in the robot frame (the x axis turns
-/// towards the goal; the thesis's formula for it is garbled), r_time = the episode's time.
+/// towards the goal; the thesis's formula for it is garbled), r_time = the episode's time, and
+/// with obstacle_weight > 0 the shaping term Φ_t − Φ_{t−1} near obstacles.
 /// @tparam N preview samples of the NMPC (walking.n must equal it)
 template <int N = 16>
 class NmpcGoalEnv {
@@ -120,7 +140,10 @@ class NmpcGoalEnv {
     reset();
   }
 
-  int observation_size() const { return 2 + 3 * s_.obstacles; }
+  static constexpr int kMotionSize = 7;  ///< state numbers that observe_motion adds
+  int observation_size() const {
+    return 2 + 3 * s_.obstacles + (s_.observe_motion ? kMotionSize : 0);
+  }
   int action_size() const { return kActionSize; }
 
   /// Restarts the task generator from `seed` (the next reset() draws the seed's first task).
@@ -173,10 +196,12 @@ class NmpcGoalEnv {
     WALKGEN_ASSERT(standing == CommandStatus::accepted);  // 0 is within any max_command >= 0
     steps_ = 0;
     failed_ = false;
+    action_ = {0.0f, 0.0f};
     min_clearance_ = std::numeric_limits<double>::infinity();
     check_footsteps();
     previous_frontal_ = unit_goal_robot().x();
     previous_distance_ = distance();
+    previous_potential_ = obstacle_potential();
   }
 
   /// Writes the state (see the class comment) to obs[0..observation_size()).
@@ -191,14 +216,26 @@ class NmpcGoalEnv {
       obs[3 + 3 * k] = static_cast<float>(c.y());
       obs[4 + 3 * k] = static_cast<float>(o.radius + o.margin);
     }
+    if (!s_.observe_motion) return;
+    float* m = obs + 2 + 3 * obstacles_.size();
+    const auto& st = mpc_.state();
+    const Eigen::Vector2d v = rotate_to_robot(Eigen::Vector2d(st.com_x[1], st.com_y[1]));
+    const Eigen::Vector2d foot = to_robot(Eigen::Vector2d(st.support.x, st.support.y));
+    m[0] = static_cast<float>(v.x());
+    m[1] = static_cast<float>(v.y());
+    m[2] = action_[0];
+    m[3] = action_[1];
+    m[4] = static_cast<float>(foot.x());
+    m[5] = static_cast<float>(foot.y());
+    m[6] = static_cast<float>(double(st.phase) / double(s_.walking.samples_per_step()));
   }
 
-  /// The command that an action maps to: (a_0 v_max, 0, a_1 ω_max) · command_fraction.
+  /// The command that an action maps to: (a_0 v_max, 0, a_1 ω_max) · command_fraction, with
+  /// each a_i clipped to [−1, 1] (a NaN or infinite one is 0).
   Eigen::Vector3d command_of(const float* action) const {
-    auto clip = [](float a) { return std::isfinite(a) ? std::clamp<double>(a, -1.0, 1.0) : 0.0; };
     const auto& m = s_.walking.max_command;
-    return {clip(action[0]) * m[0] * s_.command_fraction, 0.0,
-            clip(action[1]) * m[2] * s_.command_fraction};
+    return {clipped(action[0]) * m[0] * s_.command_fraction, 0.0,
+            clipped(action[1]) * m[2] * s_.command_fraction};
   }
 
   /// Sends the action's command and runs ticks_per_step NMPC ticks.
@@ -206,6 +243,7 @@ class NmpcGoalEnv {
     EnvStep r;
     [[maybe_unused]] const CommandStatus sent = mpc_.set_command(command_of(action));
     WALKGEN_ASSERT(sent == CommandStatus::accepted);  // finite, |c| < max_command by command_of
+    action_ = {static_cast<float>(clipped(action[0])), static_cast<float>(clipped(action[1]))};
     for (int k = 0; k < s_.ticks_per_step; ++k) {
       const MpcResult<double>& solved = mpc_.solve();
       if (solved.status != MpcStatus::solved) {
@@ -221,10 +259,13 @@ class NmpcGoalEnv {
     const double d = distance();
     const double frontal = unit_goal_robot().x();
     const double time = mpc_.state().time;
+    const double potential = obstacle_potential();
     r.reward = s_.goal_weight * (previous_distance_ - d) +
-               s_.frontal_weight * (frontal - previous_frontal_) - s_.time_weight * time;
+               s_.frontal_weight * (frontal - previous_frontal_) - s_.time_weight * time +
+               (potential - previous_potential_);
     previous_distance_ = d;
     previous_frontal_ = frontal;
+    previous_potential_ = potential;
     if (failed_) {
       r.reward += s_.failure_reward;
       r.end = EpisodeEnd::failure;
@@ -275,15 +316,31 @@ class NmpcGoalEnv {
     return true;
   }
 
-  Eigen::Vector2d to_robot(const Eigen::Vector2d& p_W) const {
+  static double clipped(float a) {
+    return std::isfinite(a) ? std::clamp<double>(a, -1.0, 1.0) : 0.0;
+  }
+  /// A world-frame vector in the robot frame, R_z(θ)ᵀ d.
+  Eigen::Vector2d rotate_to_robot(const Eigen::Vector2d& d) const {
     const double q = heading(), c = std::cos(q), s = std::sin(q);
-    const Eigen::Vector2d d = p_W - position();
     return {c * d.x() + s * d.y(), -s * d.x() + c * d.y()};
+  }
+  Eigen::Vector2d to_robot(const Eigen::Vector2d& p_W) const {
+    return rotate_to_robot(p_W - position());
   }
   Eigen::Vector2d unit_goal_robot() const {
     const Eigen::Vector2d g = to_robot(goal_);
     const double n = g.norm();
     return n > 1e-9 ? Eigen::Vector2d(g / n) : Eigen::Vector2d(1.0, 0.0);
+  }
+  /// Φ of NmpcGoalSettings::obstacle_weight (0 without obstacles or weight).
+  double obstacle_potential() const {
+    double phi = 0.0;
+    if (s_.obstacle_weight == 0.0) return phi;
+    for (const auto& o : obstacles_) {
+      const double c = (position() - Eigen::Vector2d(o.x, o.y)).norm() - (o.radius + o.margin);
+      phi -= s_.obstacle_weight * std::max(0.0, 1.0 - c / s_.obstacle_shaping_distance);
+    }
+    return phi;
   }
   void check_footsteps() {
     const auto& st = mpc_.state();
@@ -303,7 +360,8 @@ class NmpcGoalEnv {
   int steps_ = 0;
   long ticks_ = 0;
   bool failed_ = false;
-  double previous_distance_ = 0.0, previous_frontal_ = 0.0;
+  std::array<float, kActionSize> action_{};  ///< the clipped action in effect (observe_motion)
+  double previous_distance_ = 0.0, previous_frontal_ = 0.0, previous_potential_ = 0.0;
   double min_clearance_ = std::numeric_limits<double>::infinity();
 };
 

@@ -53,6 +53,10 @@ struct PpoSettings {
   double target_kl = 0.02;
   double reward_scale = 1.0;         ///< rewards are multiplied by this before GAE (value scale)
   bool normalize_advantages = true;  ///< advantages to zero mean, unit std per update
+  /// Adam's step size falls linearly over the run, learning_rate · (1 − k / K) at update k of
+  /// K (TorchPpo::set_total_updates; ppo_train sets K from the run's epochs): the late updates,
+  /// which pick the final policy, take small steps. false: constant.
+  bool anneal_learning_rate = false;
   /// Seeds the initial weights (torch::manual_seed) and each update's minibatch order
   /// (walkgen::mix_seed); PpoTrainer also seeds the environments and their exploration noise
   /// from it.

@@ -290,6 +290,19 @@ class TorchPpo {
   [[nodiscard]] PpoCommunicator* communicator() const { return communicator_; }
   /// Updates done so far (the counter that seeds each update's minibatch order).
   [[nodiscard]] std::int64_t updates() const { return updates_; }
+  /// The run's number of updates K, for PpoSettings::anneal_learning_rate (0: not known, the
+  /// step size stays learning_rate).
+  /// @throws walkgen::invalid_argument for K < 0.
+  void set_total_updates(std::int64_t total) {
+    check_argument(total >= 0, "TorchPpo::set_total_updates", "a count >= 0", total);
+    total_updates_ = total;
+  }
+  /// Adam's step size for the next update (PpoSettings::anneal_learning_rate).
+  [[nodiscard]] double learning_rate() const {
+    if (!s_.anneal_learning_rate || total_updates_ <= 0) return s_.learning_rate;
+    const double left = 1.0 - static_cast<double>(updates_) / static_cast<double>(total_updates_);
+    return s_.learning_rate * std::max(0.0, left);
+  }
 
   /// One PPO update on a rollout (algorithm 1): GAE, then `epochs` passes over shuffled
   /// minibatches of L = −L^CLIP + c1 L^VF − c2 S (eq. 4.16–4.17) with Adam.
@@ -305,6 +318,9 @@ class TorchPpo {
     check_argument(r.observation_size == obs_ && r.action_size == act_ && r.steps > 0 && r.envs > 0,
                    "TorchPpo::update", "a rollout of this policy's observation/action sizes",
                    "other sizes or an empty rollout");
+    const double step_size = learning_rate();
+    for (auto& group : optimizer_.param_groups())
+      static_cast<torch::optim::AdamOptions&>(group.options()).lr(step_size);
     std::vector<float> rewards(r.rewards);
     for (auto& x : rewards) x = static_cast<float>(x * s_.reward_scale);
     std::vector<float> adv, ret;
@@ -652,6 +668,7 @@ class TorchPpo {
   torch::optim::Adam optimizer_;
   PpoCommunicator* communicator_ = nullptr;
   std::int64_t updates_ = 0;
+  std::int64_t total_updates_ = 0;  ///< K of PpoSettings::anneal_learning_rate (0: unknown)
 };
 
 }  // namespace walkgen

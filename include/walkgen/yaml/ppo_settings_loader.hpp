@@ -12,7 +12,7 @@
 ///     learning_rate: 0.001
 ///     entropy_coef: 0.0          # also initial_std, gamma, lambda, clip, value_coef, epochs,
 ///                                # minibatch, max_grad_norm, target_kl, reward_scale,
-///                                # normalize_advantages
+///                                # normalize_advantages, anneal_learning_rate
 ///   run:
 ///     epochs: 30                 # also steps, envs, rollout_steps, threads, seed,
 ///     checkpoint_every: 1        # validation_seed, evaluation_seed
@@ -130,6 +130,8 @@ inline PpoConfig ppo_config_from_node(const YAML::Node& root, const std::string&
       {"reward_scale", number(p.reward_scale)},
       {"normalize_advantages",
        [&p](const YamlValue& v) { p.normalize_advantages = v.as<bool>("true or false"); }},
+      {"anneal_learning_rate",
+       [&p](const YamlValue& v) { p.anneal_learning_rate = v.as<bool>("true or false"); }},
   };
   const std::vector<std::pair<const char*, std::function<void(const YamlValue&)>>> run_keys = {
       {"epochs", count(r.epochs, 1)},
