@@ -5,6 +5,7 @@
 // (walkgen::DemonstrationRecorder: PNG files and index.txt).
 //
 //   record_demonstrations --out DIR [--episodes N] [--seed S] [--tasks LIST] [--noise W]
+//                         [--randomize]
 //     --out DIR     the dataset folder (required; episodes are added to its index.txt; an
 //                   episode the folder already holds is refused, exit status 2)
 //     --episodes N  episodes, >= 1, cycling through the tasks (default 6)
@@ -15,6 +16,13 @@
 //                   own command is recorded: states off the expert's path, labelled with the way
 //                   back (DART, Laskey et al. 2017; against the drift of plain cloning).
 //                   In [0, 1) rad/s; default 0.
+//     --randomize   domain randomisation: each room's look (light intensity and direction,
+//                   floor texture and colours, target colour, size and shape, wall colour,
+//                   camera pose offsets, pixel noise) drawn from its seed within the training
+//                   ranges (walkgen::random_scene_appearance, walkgen::AppearanceRanges);
+//                   without it, the rooms' default look
+// Each episode's look is added to DIR/appearance.csv (episode, then
+// walkgen::appearance_csv_header()'s columns).
 // The command line is parsed by CLI11 (examples/common/cli.hpp): --help prints every option with
 // its default; an unknown option or a bad value exits 2 with one line on stderr.
 // Prints one line per episode and a summary; exit status 0 when every episode reached its target.
@@ -40,6 +48,7 @@ int main(int argc, char** argv) {
   int episodes = 6;
   std::uint32_t seed = 1000;
   double noise = 0.0;
+  bool randomize = false;
   CLI::App app{
       "Demonstrations for behavioural cloning: the scripted expert walks the humanoid "
       "through random rooms, recorded per NMPC tick (thesis §7.1, §11.1.1)",
@@ -55,24 +64,35 @@ int main(int argc, char** argv) {
                  "DART: every other episode adds a random turn rate, sigma [rad/s] in [0, 1)")
       ->check(walkgen_examples::number_where("in [0, 1) [rad/s]",
                                              [](double v) { return v >= 0.0 && v < 1.0; }));
+  app.add_flag("--randomize", randomize,
+               "domain randomisation: each room's look (light, floor, target colour, size and "
+               "shape, walls, camera pose, pixel noise) drawn from its seed in the training "
+               "ranges; every episode's look goes to OUT/appearance.csv");
   WALKGEN_CLI_PARSE(app, argc, argv);
   const std::vector<walkgen::NavigationTask> tasks = task_option.tasks();
   int reached = 0;
   long frames = 0;
   double simulated = 0.0;
+  walkgen_examples::AppearanceLog looks;
   for (int e = 0; e < episodes; ++e) {
     const walkgen::NavigationTask task = tasks[std::size_t(e) % tasks.size()];
-    const walkgen::NavigationScene scene =
-        walkgen::make_navigation_scene(task, seed + std::uint32_t(e));
+    walkgen::NavigationScene scene = walkgen::make_navigation_scene(task, seed + std::uint32_t(e));
+    if (randomize) scene.appearance = walkgen::random_scene_appearance(scene.seed);
+    const std::string episode =
+        std::string(walkgen::to_string(task)) + "_" + std::to_string(scene.seed);
     std::optional<walkgen::DemonstrationRecorder> recorder_slot;
     try {  // refuses an episode the folder already holds
-      recorder_slot.emplace(
-          out, std::string(walkgen::to_string(task)) + "_" + std::to_string(scene.seed));
+      recorder_slot.emplace(out, episode);
     } catch (const walkgen::invalid_argument& e) {
       std::fprintf(stderr, "record_demonstrations: %s\n", e.what());
       return 2;
     }
     walkgen::DemonstrationRecorder& recorder = *recorder_slot;
+    if (!looks.is_open() && !looks.open(out, "episode")) {
+      std::fprintf(stderr, "record_demonstrations: cannot write %s/appearance.csv\n", out.c_str());
+      return 2;
+    }
+    looks.add(episode, scene.appearance);
     walkgen::ScriptedExpert expert(scene,
                                    walkgen::walkgen_humanoid_description().walking.max_command);
     walkgen::NavigationOptions options;

@@ -6,7 +6,7 @@ disparity/) and exports it as TorchScript for the C++ controller.
     /usr/bin/python3 python/bc_train.py DATA [DATA ...] OUT [--epochs 30] [--batch 32]
                                           [--lr 1e-3] [--sequence 5] [--chunk 16] [--width 8]
                                           [--seed 0] [--max-steps N] [--threads 2]
-                                          [--init OUT/best.pth]
+                                          [--init OUT/best.pth] [--augment]
 
 Pre-processing (the C++ side, walkgen/torch/velocity_network.hpp, does the same): the left RGB
 image and the WLS disparity (240 x 320) are averaged over 4 x 4 blocks to 60 x 80; RGB is scaled
@@ -72,6 +72,56 @@ def load_frame(folder, rgb_path, disparity_path):
     return frame
 
 
+# Image augmentation (--augment, issue 27): one draw per training window, the same for all its
+# frames (a window is one scene seen for a few seconds). The ranges are training ranges: the
+# held-out shifts of bc_evaluate --shift (light at 0.25, from the side, a blue or small target,
+# a new floor) lie outside what the recorder's randomisation and this augmentation produce.
+AUGMENT_BRIGHTNESS = (0.45, 1.5)  # RGB gain, log-uniform
+AUGMENT_CHANNEL_GAIN = (0.85, 1.15)  # per colour channel, uniform
+AUGMENT_CONTRAST = (0.7, 1.3)  # about the window's mean, uniform
+AUGMENT_NOISE = 0.03  # largest std of the pixel noise on RGB in [0, 1]
+AUGMENT_SHIFT = 2  # largest shift [px of the 60 x 80 frame] (camera pose)
+AUGMENT_DISPARITY_NOISE = 0.02  # std of the disparity noise (units of D = 32 px)
+AUGMENT_DISPARITY_DROPOUT = 0.05  # largest share of disparity pixels lost (0: no match)
+
+
+def augment(window, generator=None):
+    """A photometric and geometric variation of a window of frames (frames x 4 x H x W: RGB in
+    [0, 1], then the scaled disparity), drawn with `generator` (torch.Generator, or torch's
+    global one): brightness, colour balance, contrast and pixel noise on RGB, a shift of the
+    whole image, noise and lost pixels on the disparity. Returns a new tensor."""
+    def uniform(low, high, shape=()):
+        return low + (high - low) * torch.rand(shape, generator=generator)
+
+    x = window.clone().float()
+    rgb, disparity = x[:, :3], x[:, 3:]
+    lo, hi = math.log(AUGMENT_BRIGHTNESS[0]), math.log(AUGMENT_BRIGHTNESS[1])
+    gain = torch.exp(uniform(lo, hi)) * uniform(*AUGMENT_CHANNEL_GAIN, (1, 3, 1, 1))
+    rgb = rgb * gain
+    mean = rgb.mean(dim=(1, 2, 3), keepdim=True)
+    rgb = (rgb - mean) * uniform(*AUGMENT_CONTRAST) + mean
+    rgb = rgb + uniform(0.0, AUGMENT_NOISE) * torch.randn(rgb.shape, generator=generator)
+    disparity = disparity + AUGMENT_DISPARITY_NOISE * torch.randn(disparity.shape,
+                                                                   generator=generator)
+    lost = torch.rand(disparity.shape, generator=generator) < uniform(0.0,
+                                                                      AUGMENT_DISPARITY_DROPOUT)
+    disparity = torch.where(lost, torch.zeros_like(disparity), disparity.clamp(min=0.0))
+    x = torch.cat([rgb.clamp(0.0, 1.0), disparity], dim=1)
+    dy, dx = (int(v) for v in torch.randint(-AUGMENT_SHIFT, AUGMENT_SHIFT + 1, (2,),
+                                            generator=generator))
+    if dy or dx:  # shifted, the uncovered border repeats the edge
+        x = torch.roll(x, shifts=(dy, dx), dims=(2, 3))
+        if dy > 0:
+            x[:, :, :dy] = x[:, :, dy:dy + 1]
+        elif dy < 0:
+            x[:, :, dy:] = x[:, :, dy - 1:dy]
+        if dx > 0:
+            x[:, :, :, :dx] = x[:, :, :, dx:dx + 1]
+        elif dx < 0:
+            x[:, :, :, dx:] = x[:, :, :, dx - 1:dx]
+    return x
+
+
 def read_index(folder, prefix=""):
     """Episodes of a folder's index.txt: {prefix + name: [(t, rgb, disparity, v_x, omega)]}."""
     path = os.path.join(folder, "index.txt")
@@ -122,8 +172,10 @@ class Chunks(torch.utils.data.Dataset):
     frames, which then end a full sequence; a mask marks the ones past the episode's end.
     Consecutive windows overlap by sequence - 1 frames, so that every frame is a target once."""
 
-    def __init__(self, episodes, frames, sequence, chunk):
-        """episodes: lists of rows of read_index; frames: {(folder, rgb): processed frame}."""
+    def __init__(self, episodes, frames, sequence, chunk, augmented=False):
+        """episodes: lists of rows of read_index; frames: {(folder, rgb): processed frame};
+        augmented: each window drawn through augment()."""
+        self.augmented = augmented
         self.frames, self.labels, self.items = [], [], []
         stride = chunk - sequence + 1
         for rows in episodes:
@@ -152,7 +204,8 @@ class Chunks(torch.utils.data.Dataset):
 
     def __getitem__(self, i):
         ids, mask = self.items[i]
-        return (torch.stack([self.frames[j] for j in ids]),
+        window = torch.stack([self.frames[j] for j in ids])
+        return (augment(window) if self.augmented else window,
                 torch.stack([self.labels[j] for j in ids[self.sequence - 1:]]), mask)
 
 
@@ -262,6 +315,9 @@ def main():
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--max-steps", type=int, default=0, help="stop after N optimiser steps")
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--augment", action="store_true",
+                        help="vary the training windows' brightness, colour balance, contrast, "
+                        "noise, position and disparity (augment(); validation stays as recorded)")
     parser.add_argument("--init", help="start from these weights (OUT/best.pth of an earlier "
                         "run, e.g. to fine-tune after a DAgger round); with --epochs 0 only "
                         "evaluate and export them")
@@ -297,7 +353,8 @@ def main():
     train_names = [n for n in names if n not in val_names]
     if not train_names:
         sys.exit("bc_train: need at least one training episode")
-    train = Chunks([episodes[n] for n in train_names], frames, args.sequence, args.chunk)
+    train = Chunks([episodes[n] for n in train_names], frames, args.sequence, args.chunk,
+                   augmented=args.augment)
     val = Chunks([episodes[n] for n in val_names or train_names], frames, args.sequence,
                  args.chunk)
     print("bc_train: %d episodes (%d targets) for training, %d (%d targets) for validation"

@@ -39,6 +39,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -89,6 +90,108 @@ struct SceneObject {
   /// is not moved by contacts.
   bool movable = false;
 };
+
+/// The floor of WorldAppearance: the model's own, or one of MuJoCo's builtin 2-D textures in
+/// two colours (rgb1, rgb2), repeated as the model's floor material repeats.
+enum class FloorTexture : std::uint8_t {
+  model,     ///< the model's own floor material, unchanged
+  checker,   ///< squares of rgb1 and rgb2
+  gradient,  ///< rgb1 fading into rgb2 across each repeat
+  speckle,   ///< rgb1 with random dots of rgb2 (MuJoCo's flat texture, mark "random")
+  tiles,     ///< rgb1 tiles with joints of rgb2 (MuJoCo's flat texture, mark "edge")
+};
+
+/// "model", "checker", "gradient", "speckle" or "tiles"; "unknown" for a value out of range.
+constexpr const char* to_string(FloorTexture t) noexcept {
+  switch (t) {
+    case FloorTexture::model:
+      return "model";
+    case FloorTexture::checker:
+      return "checker";
+    case FloorTexture::gradient:
+      return "gradient";
+    case FloorTexture::speckle:
+      return "speckle";
+    case FloorTexture::tiles:
+      return "tiles";
+  }
+  return "unknown";
+}
+
+/// How the model's own world and the chest cameras look (MujocoRobotSettings::appearance): the
+/// light, the floor, small offsets of the camera pair and noise on its images, e.g. drawn at
+/// random per episode so that a network trained on the images does not learn one look (domain
+/// randomisation; walkgen/mujoco/scene_appearance.hpp draws them). The defaults leave the model
+/// as its file describes it: the same images as without these settings.
+struct WorldAppearance {
+  /// Scale of the diffuse and specular light of every light of the model and of MuJoCo's
+  /// headlight (which follows the rendering camera): 0.25 is a room lit at a quarter.
+  double light_intensity = 1.0;
+  /// Scale of the ambient light of every light and of the headlight.
+  double ambient_intensity = 1.0;
+  /// Direction the light travels in the world frame (not normalised; (0, 0, -1) straight down)
+  /// for every directional light of the world body, each placed as far from the origin as it
+  /// was, against that direction (shadows); unset: the model's own.
+  std::optional<Eigen::Vector3d> light_direction;
+  /// The floor (the world body's plane geoms); model: unchanged, and the colours unused.
+  FloorTexture floor_texture = FloorTexture::model;
+  Eigen::Vector3d floor_rgb1 = Eigen::Vector3d(0.2, 0.3, 0.4);  ///< each in [0, 1]
+  Eigen::Vector3d floor_rgb2 = Eigen::Vector3d(0.3, 0.4, 0.5);  ///< each in [0, 1]
+  /// [m] the chest camera pair moved, in the frame of the body that carries the cameras (the
+  /// chest of walkgen's humanoid: x forward, y left, z up); the pair moves as one (its
+  /// baseline stays rectified). Needs both cameras in one body or in joint-free bodies with one
+  /// parent; unused for a robot without cameras.
+  Eigen::Vector3d camera_offset = Eigen::Vector3d::Zero();
+  /// [rad] roll, pitch, yaw (about x, y, z of that frame, R = Rz Ry Rx) of the camera pair about
+  /// the middle between its cameras; pitch > 0 tilts the cameras down.
+  Eigen::Vector3d camera_rotation = Eigen::Vector3d::Zero();
+  /// Standard deviation of Gaussian noise added to every channel of every pixel of the chest
+  /// cameras' RGB images [grey levels of 0–255] (rounded, clipped), before anything (stereo
+  /// matching, recording) sees them; the depth images stay exact. 0: none.
+  double pixel_noise = 0.0;
+  /// Seed of the pixel noise: a robot's images are the same for the same seed and steps.
+  std::uint32_t noise_seed = 0;
+};
+
+namespace detail {
+
+/// Whether every channel of `rgb` is in [0, 1] (NaN is not).
+inline bool is_rgb(const Eigen::Vector3d& rgb) {
+  return (rgb.array() >= 0.0).all() && (rgb.array() <= 1.0).all();
+}
+
+}  // namespace detail
+
+/// Checks a world appearance; `where` names it in the messages ("WorldAppearance",
+/// "MujocoRobotSettings.appearance", ...).
+/// @throws walkgen::invalid_argument naming the first bad field.
+inline void validate(const WorldAppearance& a, const std::string& where = "WorldAppearance") {
+  auto field = [&where](const char* name) { return where + "." + name; };
+  auto scale_ok = [](double k) { return std::isfinite(k) && k >= 0.0 && k <= 10.0; };
+  check_argument(scale_ok(a.light_intensity), field("light_intensity").c_str(),
+                 "a scale in [0, 10]", a.light_intensity);
+  check_argument(scale_ok(a.ambient_intensity), field("ambient_intensity").c_str(),
+                 "a scale in [0, 10]", a.ambient_intensity);
+  check_argument(
+      !a.light_direction || (a.light_direction->allFinite() && a.light_direction->norm() > 1e-9),
+      field("light_direction").c_str(), "a finite non-zero direction (or none: the model's)",
+      a.light_direction ? detail::vector_text(*a.light_direction) : "");
+  check_argument(a.floor_texture <= FloorTexture::tiles, field("floor_texture").c_str(),
+                 "model, checker, gradient, speckle or tiles", int(a.floor_texture));
+  check_argument(detail::is_rgb(a.floor_rgb1), field("floor_rgb1").c_str(), "values in [0, 1]",
+                 detail::vector_text(a.floor_rgb1));
+  check_argument(detail::is_rgb(a.floor_rgb2), field("floor_rgb2").c_str(), "values in [0, 1]",
+                 detail::vector_text(a.floor_rgb2));
+  check_argument(a.camera_offset.allFinite() && a.camera_offset.cwiseAbs().maxCoeff() <= 0.1,
+                 field("camera_offset").c_str(), "finite offsets within ±0.1 m",
+                 detail::vector_text(a.camera_offset));
+  check_argument(a.camera_rotation.allFinite() && a.camera_rotation.cwiseAbs().maxCoeff() <= 0.5,
+                 field("camera_rotation").c_str(), "finite angles within ±0.5 rad",
+                 detail::vector_text(a.camera_rotation));
+  check_argument(std::isfinite(a.pixel_noise) && a.pixel_noise >= 0.0 && a.pixel_noise <= 100.0,
+                 field("pixel_noise").c_str(), "a standard deviation in [0, 100] grey levels",
+                 a.pixel_noise);
+}
 
 /// The feed-forward torque of a torque-driven robot's joint controller.
 enum class JointFeedforward : std::uint8_t {
@@ -150,6 +253,9 @@ struct MujocoRobotSettings {
   double fall_height_ratio = 0.8;
   /// Static objects added to the world of the model (the model file itself is not changed).
   std::vector<SceneObject> objects;
+  /// The light, floor, camera pose offsets and image noise (the model file itself is not
+  /// changed); the defaults: the model's own.
+  WorldAppearance appearance;
   /// [rad] the floor's slope, as gravity tilted against the world: (along x, across y). A
   /// positive x slope is uphill walking forward (gravity pulls toward −x), a positive y slope
   /// rises to the left (gravity pulls toward −y). The floor, the feet and the frames stay level
@@ -193,9 +299,10 @@ inline void validate(const MujocoRobotSettings& s) {
     check_argument(o.position.allFinite() && std::isfinite(o.yaw) && o.size.allFinite() &&
                        (o.size.array() > 0.0).all(),
                    where.c_str(), "a finite pose and sizes > 0", "NaN, inf or a size <= 0");
-    check_argument((o.rgb.array() >= 0.0).all() && (o.rgb.array() <= 1.0).all(),
-                   (where + " rgb").c_str(), "values in [0, 1]", "out of range");
+    check_argument(detail::is_rgb(o.rgb), (where + " rgb").c_str(), "values in [0, 1]",
+                   "out of range");
   }
+  validate(s.appearance, "MujocoRobotSettings.appearance");
 }
 
 /// The settings that load `robot`'s MJCF with its names (joints, ankle sensor sites, soles and
@@ -232,6 +339,7 @@ class MujocoRobot final : public Robot {
     if (settings_.model_path.empty()) settings_.model_path = humanoid_mjcf_path();
     load_model();
     map_names();
+    apply_appearance();
     info_.joint_names = settings_.joint_names;
     info_.timestep = model_->opt.timestep;
     info_.image_width = static_cast<int>(custom_numeric("camera_resolution", 0, 320));
@@ -328,6 +436,10 @@ class MujocoRobot final : public Robot {
     if (!renderer_ready()) return images_;
     for (int c = 0; c < 2; ++c)
       render_camera(camera_ids_[c], c == 0 ? images_.left : images_.right);
+    if (settings_.appearance.pixel_noise > 0.0) {
+      add_pixel_noise(images_.left);
+      add_pixel_noise(images_.right);
+    }
     images_.status = RenderStatus::ok;
     images_.message.clear();
     return images_;
@@ -468,10 +580,10 @@ class MujocoRobot final : public Robot {
     check_argument(std::ifstream(path).good(), "MujocoRobot: model_path", "a readable MJCF file",
                    "'" + path + "' (cannot be opened)");
     char error[1000] = "";
-    if (settings_.objects.empty()) {
+    if (settings_.objects.empty() && settings_.appearance.floor_texture == FloorTexture::model) {
       model_.reset(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
     } else {
-      model_.reset(load_with_objects(path, error, sizeof(error)));
+      model_.reset(load_with_additions(path, error, sizeof(error)));
     }
     std::string reason(error);  // MuJoCo's message spans lines: make it one
     std::replace(reason.begin(), reason.end(), '\n', ' ');
@@ -491,10 +603,15 @@ class MujocoRobot final : public Robot {
     }
   }
 
-  /// The MJCF of `path` with settings_.objects inserted at the end of its worldbody, loaded
-  /// from memory (MuJoCo's virtual file system: asset files of the model, if any, must then be
-  /// found from the working directory; walkgen's humanoid has none).
-  mjModel* load_with_objects(const std::string& path, char* error, int error_size) const {
+  /// Name of the floor's texture and material that a WorldAppearance adds (not a name that a
+  /// SceneObject can have).
+  static constexpr const char* kFloorMaterial = "walkgen.floor";
+
+  /// The MJCF of `path` with settings_.objects inserted at the end of its worldbody and the
+  /// appearance's floor texture and material in an <asset> section of their own, loaded from
+  /// memory (MuJoCo's virtual file system: asset files of the model, if any, must then be found
+  /// from the working directory; walkgen's humanoid has none).
+  mjModel* load_with_additions(const std::string& path, char* error, int error_size) const {
     std::ifstream in(path);
     std::stringstream text;
     text << in.rdbuf();
@@ -539,6 +656,7 @@ class MujocoRobot final : public Robot {
       bodies << "/>\n    </body>\n";
     }
     xml.insert(end, bodies.str());
+    add_floor_asset(assets);
     if (!assets.str().empty()) {  // an <asset> section of their own, first in the model
       const std::size_t root = xml.find("<mujoco");
       const std::size_t open_end = root == std::string::npos ? root : xml.find('>', root);
@@ -556,6 +674,138 @@ class MujocoRobot final : public Robot {
     mjModel* m = mj_loadXML(name.c_str(), vfs.get(), error, error_size);
     mj_deleteVFS(vfs.get());
     return m;
+  }
+
+  /// The texture and material kFloorMaterial of the appearance's floor, if it has its own.
+  void add_floor_asset(std::ostream& assets) const {
+    const WorldAppearance& a = settings_.appearance;
+    if (a.floor_texture == FloorTexture::model) return;
+    const Eigen::Vector3d& c1 = a.floor_rgb1;
+    const Eigen::Vector3d& c2 = a.floor_rgb2;
+    const FloorTexture t = a.floor_texture;
+    const bool marked = t == FloorTexture::speckle || t == FloorTexture::tiles;
+    const char* builtin = t == FloorTexture::gradient ? "gradient" : marked ? "flat" : "checker";
+    // Marks are texels: on a 64-texel texture the dots and joints are ~1 cm, large enough for
+    // the cameras (and stereo matching) to see; the model's floor has 512.
+    const int texels = marked ? 64 : 512;
+    assets << "    <texture name=\"" << kFloorMaterial << "\" type=\"2d\" builtin=\"" << builtin
+           << '"';
+    if (t == FloorTexture::speckle) assets << " mark=\"random\" random=\"0.3\"";
+    if (t == FloorTexture::tiles) assets << " mark=\"edge\"";
+    assets << " rgb1=\"" << c1.x() << ' ' << c1.y() << ' ' << c1.z() << '"'
+           << (marked ? " markrgb=\"" : " rgb2=\"") << c2.x() << ' ' << c2.y() << ' ' << c2.z()
+           << "\" width=\"" << texels << "\" height=\"" << texels << "\"/>\n"
+           << "    <material name=\"" << kFloorMaterial << "\" texture=\"" << kFloorMaterial
+           << "\" texrepeat=\"8 8\"/>\n";
+  }
+
+  /// The appearance's light, floor material and camera pose, on the loaded model (before the
+  /// first mj_forward, which places lights and cameras).
+  void apply_appearance() {
+    const WorldAppearance& a = settings_.appearance;
+    mjModel* m = model_.get();
+    auto scale = [](float* rgb, double k) {
+      for (int i = 0; i < 3; ++i) rgb[i] = static_cast<float>(rgb[i] * k);
+    };
+    for (int l = 0; l < m->nlight; ++l) {
+      scale(m->light_diffuse + 3 * l, a.light_intensity);
+      scale(m->light_specular + 3 * l, a.light_intensity);
+      scale(m->light_ambient + 3 * l, a.ambient_intensity);
+    }
+    scale(m->vis.headlight.diffuse, a.light_intensity);
+    scale(m->vis.headlight.specular, a.light_intensity);
+    scale(m->vis.headlight.ambient, a.ambient_intensity);
+    if (a.light_direction) {
+      const Eigen::Vector3d d = a.light_direction->normalized();
+      int lights = 0;
+      for (int l = 0; l < m->nlight; ++l) {
+        if (!m->light_directional[l] || m->light_bodyid[l] != 0) continue;
+        Eigen::Map<Eigen::Vector3d> pos(m->light_pos + 3 * l);
+        pos = -pos.norm() * d;  // as far away as before, against the light
+        Eigen::Map<Eigen::Vector3d>(m->light_dir + 3 * l) = d;
+        ++lights;
+      }
+      check_argument(lights > 0, "MujocoRobotSettings.appearance.light_direction",
+                     "a model with a directional light in its world body",
+                     "'" + settings_.model_path + "' without one");
+    }
+    if (a.floor_texture != FloorTexture::model) {
+      const int material = mj_name2id(m, mjOBJ_MATERIAL, kFloorMaterial);
+      int floors = 0;
+      for (int g = 0; g < m->ngeom; ++g) {
+        if (m->geom_bodyid[g] != 0 || m->geom_type[g] != mjGEOM_PLANE) continue;
+        const int before = m->geom_matid[g];
+        if (before >= 0 && floors == 0) {  // the floor's repeat and reflection stay
+          m->mat_texrepeat[2 * material] = m->mat_texrepeat[2 * before];
+          m->mat_texrepeat[2 * material + 1] = m->mat_texrepeat[2 * before + 1];
+          m->mat_texuniform[material] = m->mat_texuniform[before];
+          m->mat_reflectance[material] = m->mat_reflectance[before];
+        }
+        m->geom_matid[g] = material;
+        ++floors;
+      }
+      check_argument(floors > 0, "MujocoRobotSettings.appearance.floor_texture",
+                     "a model with a floor (a plane geom of the world body)",
+                     "'" + settings_.model_path + "' without one");
+    }
+    if (camera_ids_[0] >= 0 && (!a.camera_offset.isZero() || !a.camera_rotation.isZero())) {
+      move_cameras(a.camera_offset, detail::rotation_from_rpy(a.camera_rotation));
+    }
+    noise_rng_.seed(a.noise_seed);
+  }
+
+  /// Moves the camera pair as one: rotated by R about the middle between the cameras and
+  /// shifted by `offset`, both in the frame of the body that carries them (or of the parent of
+  /// the joint-free bodies that carry one each).
+  void move_cameras(const Eigen::Vector3d& offset, const Eigen::Matrix3d& R) {
+    mjModel* m = model_.get();
+    auto from_pos_quat = [](const mjtNum* pos, const mjtNum* quat) {  // quat: w, x, y, z
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.linear() = Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]).normalized().matrix();
+      T.translation() = Eigen::Map<const Eigen::Vector3d>(pos);
+      return T;
+    };
+    std::array<int, 2> body{};
+    std::array<Eigen::Isometry3d, 2> F_b, F_c;  // body and camera in the common frame F
+    for (int i = 0; i < 2; ++i) body[i] = m->cam_bodyid[camera_ids_[i]];
+    const bool one_body = body[0] == body[1];
+    const bool siblings = m->body_parentid[body[0]] == m->body_parentid[body[1]] &&
+                          m->body_jntnum[body[0]] == 0 && m->body_jntnum[body[1]] == 0;
+    check_argument(
+        one_body || siblings, "MujocoRobotSettings.appearance: camera_offset, camera_rotation",
+        "cameras in one body or in joint-free bodies of one parent",
+        "cameras '" + settings_.cameras[0] + "', '" + settings_.cameras[1] + "' elsewhere",
+        "leave the camera pose at zero for this model");
+    for (int i = 0; i < 2; ++i) {
+      const int c = camera_ids_[i];
+      F_b[i] = one_body ? Eigen::Isometry3d::Identity()
+                        : from_pos_quat(m->body_pos + 3 * body[i], m->body_quat + 4 * body[i]);
+      F_c[i] = F_b[i] * from_pos_quat(m->cam_pos + 3 * c, m->cam_quat + 4 * c);
+    }
+    const Eigen::Vector3d middle = 0.5 * (F_c[0].translation() + F_c[1].translation());
+    for (int i = 0; i < 2; ++i) {
+      const int c = camera_ids_[i];
+      Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+      moved.linear() = R * F_c[i].linear();
+      moved.translation() = middle + R * (F_c[i].translation() - middle) + offset;
+      const Eigen::Isometry3d b_c = F_b[i].inverse() * moved;
+      Eigen::Map<Eigen::Vector3d>(m->cam_pos + 3 * c) = b_c.translation();
+      const Eigen::Quaterniond q(b_c.linear());
+      m->cam_quat[4 * c + 0] = q.w();
+      m->cam_quat[4 * c + 1] = q.x();
+      m->cam_quat[4 * c + 2] = q.y();
+      m->cam_quat[4 * c + 3] = q.z();
+    }
+  }
+
+  /// Gaussian noise of the appearance's pixel_noise on every channel of `image` (rounded,
+  /// clipped to 0–255), from the robot's noise stream.
+  void add_pixel_noise(CameraImage& image) {
+    std::normal_distribution<double> noise(0.0, settings_.appearance.pixel_noise);
+    for (std::uint8_t& v : image.rgb) {
+      v = static_cast<std::uint8_t>(
+          std::clamp(std::lround(double(v) + noise(noise_rng_)), long(0), long(255)));
+    }
   }
 
   /// The sensor `name` of `type` and `dim` values, or -1 (and `name` added to `missing`).
@@ -1075,6 +1325,7 @@ class MujocoRobot final : public Robot {
   std::vector<unsigned char> rgb_flipped_;
   std::vector<float> depth_flipped_;
   StereoImages images_;
+  std::mt19937 noise_rng_;  ///< the chest cameras' pixel noise (WorldAppearance::noise_seed)
 };
 
 }  // namespace walkgen

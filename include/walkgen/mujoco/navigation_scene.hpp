@@ -7,7 +7,9 @@
 /// needs texture, §3.1). The robot starts at the origin facing +x, the generator's world frame.
 /// Part of walkgen::mujoco: it produces MujocoRobotSettings::objects and knows where everything is,
 /// so a scripted expert can steer through it (walkgen::GoToTarget) and an evaluation can tell
-/// success from collision.
+/// success from collision. Its look (light, floor, colours, the target's size and shape) is a
+/// SceneAppearance (walkgen/mujoco/scene_appearance.hpp): the same by default, drawn at random
+/// or shifted on request.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -21,6 +23,7 @@
 #include "walkgen/core/math.hpp"
 #include "walkgen/core/obstacle.hpp"
 #include "walkgen/mujoco/mujoco_robot.hpp"
+#include "walkgen/mujoco/scene_appearance.hpp"
 
 namespace walkgen {
 
@@ -105,11 +108,6 @@ struct NavigationScene {
   NavigationTask task = NavigationTask::straight;
   std::uint32_t seed = 0;
   Eigen::Vector2d target = Eigen::Vector2d::Zero();  ///< the target's centre
-  double target_radius = 0.06;
-  /// Taller than the chest cameras (0.75 m), so that the target stays in view up to the end of
-  /// the way: a 0.35 m extinguisher on the floor leaves the view at its bottom within 0.85 m,
-  /// and the last turns toward it could not be seen, nor learned.
-  double target_height = 1.0;
   std::vector<CircleObstacle<double>> chairs;  ///< static obstacles (radius around the centre)
   bool has_distractor = false;
   Eigen::Vector2d distractor = Eigen::Vector2d::Zero();
@@ -117,6 +115,9 @@ struct NavigationScene {
   WalkingPerson person;
   double room_half_size = 3.5;  ///< walls at ±room_half_size around (room_centre)
   Eigen::Vector2d room_centre = Eigen::Vector2d::Zero();
+  /// How the room looks: objects() colours and shapes the target, distractor and walls with
+  /// it; its `world` part is MujocoRobotSettings::appearance (NavigationEpisode sets both).
+  SceneAppearance appearance;
 
   /// Static obstacles plus the person where it is at time t, each with `margin`, for the NMPC
   /// (eq. 2.79) and the expert.
@@ -132,11 +133,11 @@ struct NavigationScene {
 
   /// The objects for MujocoRobotSettings::objects: four textured walls, the target (visible,
   /// not colliding, so that reaching it is judged by distance), textured chairs, the
-  /// distractor, the person (movable), and two textured crates along the walls.
+  /// distractor, the person (movable), and two textured crates along the walls; the target,
+  /// distractor and walls as `appearance` says.
   std::vector<SceneObject> objects() const {
     std::vector<SceneObject> out;
     const double h = room_half_size;
-    const Eigen::Vector3d wall_rgb(0.75, 0.72, 0.62);
     for (int i = 0; i < 4; ++i) {
       SceneObject w;
       w.name = "wall_" + std::to_string(i);
@@ -145,16 +146,19 @@ struct NavigationScene {
       w.position = Eigen::Vector3d(room_centre.x() + (along_x ? 0.0 : side * h),
                                    room_centre.y() + (along_x ? side * h : 0.0), 0.0);
       w.size = along_x ? Eigen::Vector3d(2.0 * h, 0.1, 1.2) : Eigen::Vector3d(0.1, 2.0 * h, 1.2);
-      w.rgb = wall_rgb;
+      w.rgb = appearance.wall_rgb;
       w.textured = true;
       out.push_back(w);
     }
     SceneObject t;
     t.name = "target";
-    t.shape = SceneShape::cylinder;
+    t.shape = appearance.target_shape;
+    const double r = appearance.target_radius;
     t.position = Eigen::Vector3d(target.x(), target.y(), 0.0);
-    t.size = Eigen::Vector3d(target_radius, target_radius, target_height);
-    t.rgb = Eigen::Vector3d(0.9, 0.12, 0.04);
+    t.size = Eigen::Vector3d(r, r, appearance.target_height);
+    if (t.shape == SceneShape::box) t.size.head<2>() *= 2.0;  // side, side, height
+    if (t.shape == SceneShape::sphere) t.position.z() = appearance.target_height - 2.0 * r;
+    t.rgb = appearance.target_rgb;
     t.collides = false;
     out.push_back(t);
     for (std::size_t i = 0; i < chairs.size(); ++i) {
@@ -172,7 +176,7 @@ struct NavigationScene {
       d.name = "distractor";
       d.position = Eigen::Vector3d(distractor.x(), distractor.y(), 0.0);
       d.size = Eigen::Vector3d(0.15, 0.15, 0.3);
-      d.rgb = Eigen::Vector3d(0.95, 0.35, 0.05);  // orange-red, a box not a cylinder
+      d.rgb = appearance.distractor_rgb;  // of similar colour, a box 0.3 m tall
       d.collides = false;
       out.push_back(d);
     }

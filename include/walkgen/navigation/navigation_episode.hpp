@@ -178,17 +178,20 @@ inline StereoDepth make_stereo_depth(const StereoImages& images) {
 /// and the IK).
 class NavigationEpisode {
  public:
-  /// Builds the robot in `scene` and starts the walk; done() when that or the first render
-  /// failed (result() says why). Heicub's settings with the scene's chairs and person as NMPC
-  /// obstacles (kNavigationObstacleMargin; the person's circle moves every tick).
-  /// @throws walkgen::invalid_argument for invalid options (validate()) or when the humanoid's
-  ///   model cannot be loaded.
+  /// Builds the robot in `scene` (its objects and look, NavigationScene::appearance) and
+  /// starts the walk; done() when that or the first render failed (result() says why). Heicub's
+  /// settings with the scene's chairs and person as NMPC obstacles (kNavigationObstacleMargin;
+  /// the person's circle moves every tick).
+  /// @throws walkgen::invalid_argument for invalid options (validate()), an invalid appearance
+  ///   of the scene (validate()) or when the humanoid's model cannot be loaded.
   explicit NavigationEpisode(const NavigationScene& scene, NavigationOptions options = {})
       : scene_(scene), options_((validate(options), std::move(options))) {
     static const KinematicTree<double> tree = humanoid_tree();
+    validate(scene_.appearance);
     const RobotDescription humanoid = walkgen_humanoid_description();
     MujocoRobotSettings robot_settings = mujoco_robot_settings(humanoid);
     robot_settings.objects = scene_.objects();
+    robot_settings.appearance = scene_.appearance.world;
     robot_ = std::make_unique<MujocoRobot>(robot_settings);
     ik_ = std::make_unique<HumanoidIk>(tree);
     settings_ = humanoid.walking;
@@ -341,8 +344,8 @@ class NavigationEpisode {
 /// Runs `policy` in `scene` until the robot reaches the target, collides, falls, or the time
 /// limit passes (a NavigationEpisode, observed and stepped once per NMPC tick). Numerical
 /// outcomes (QP failures, a fall, a failed render) are in the result, never thrown.
-/// @throws walkgen::invalid_argument for invalid options (validate()) or when the humanoid's
-///   model cannot be loaded.
+/// @throws walkgen::invalid_argument for invalid options or an invalid appearance of the scene
+///   (validate()), or when the humanoid's model cannot be loaded.
 inline NavigationResult run_navigation_episode(const NavigationScene& scene,
                                                const NavigationPolicy& policy,
                                                const NavigationOptions& options = {}) {
