@@ -34,7 +34,6 @@ histograms.png and histograms.csv: ground truth vs prediction on the validation 
 KL divergence (eq. 11.1) and the entropy (eq. 9.1) of each velocity.
 """
 import argparse
-import csv
 import math
 import os
 import random
