@@ -29,6 +29,8 @@
 //   --observe-motion, --no-observe-motion   nmpc: the robot's motion in the state (7 numbers)
 //   --success-reward R   nmpc: reward for reaching the goal (default 100, the thesis's)
 //   --obstacle-weight W  nmpc: shaping near obstacles (NmpcGoalSettings::obstacle_weight, 0)
+//   --soft-obstacles W   nmpc: the NMPC's obstacle rows soft at this exact-penalty weight
+//                   (WalkingSettings::soft.obstacles; 0: hard; default 0, with obstacles 1e4)
 //   --checkpoint-every K   epochs between checkpoints (<out>/checkpoint_<env>.pt; 0: none)
 //   --resume        continue from <out>/checkpoint_<env>.pt: the result equals an uninterrupted run
 //   --stop-after E  stop after E epochs of this invocation, as an interruption would (for tests)
@@ -76,7 +78,8 @@
 
 namespace {
 
-constexpr int kObstacleEpochs = 200;  // nmpc's default training epochs with obstacles
+constexpr int kObstacleEpochs = 200;    // nmpc's default training epochs with obstacles
+constexpr double kSoftObstacles = 1e4;  // nmpc's default --soft-obstacles with obstacles
 
 struct Options {
   std::string env;
@@ -88,6 +91,7 @@ struct Options {
   // apply_obstacle_defaults().
   bool observe_motion = false;
   double obstacle_weight = 0.0;
+  double soft_obstacles = 0.0;
   double success_reward = walkgen::NmpcGoalSettings{}.success_reward;
   bool resume = false;
   int stop_after = 0;
@@ -117,7 +121,8 @@ std::string env_key(const Options& o) {
   if (o.env == "nmpc") {
     k << " --obstacles " << o.obstacles
       << (o.observe_motion ? " --observe-motion" : " --no-observe-motion") << " --success-reward "
-      << o.success_reward << " --obstacle-weight " << o.obstacle_weight;
+      << o.success_reward << " --obstacle-weight " << o.obstacle_weight << " --soft-obstacles "
+      << o.soft_obstacles;
   }
   return k.str() + "\n";
 }
@@ -400,6 +405,7 @@ struct GoalOutcomes {
   std::vector<double> end_clearance;  // the CoM's distance to the nearest R + m at the end
   std::vector<double> end_speed;      // the CoM's speed at the end [m/s]
   std::vector<char> reached_goal;     // success with no footstep inside an obstacle
+  std::vector<std::string> conflict;  // an infeasible QP's conflicting blocks ("" if none)
   int reached = 0;
 };
 
@@ -412,6 +418,7 @@ GoalOutcomes reached_goals(walkgen::TorchPpo& ppo, std::vector<Env>& envs,
   g.clearance.assign(n, 0.0);
   g.end_clearance.assign(n, std::numeric_limits<double>::infinity());
   g.end_speed.assign(n, 0.0);
+  g.conflict.assign(n, "");
   g.results = walkgen::evaluate_tasks<Env, Task>(
       ppo, envs, tasks, &pool, [&](std::size_t i, const Env& env) {
         g.clearance[i] = env.min_obstacle_clearance();
@@ -422,6 +429,7 @@ GoalOutcomes reached_goals(walkgen::TorchPpo& ppo, std::vector<Env>& envs,
                                                ob.radius - ob.margin);
         const auto& st = env.mpc().state();
         g.end_speed[i] = std::hypot(st.com_x[1], st.com_y[1]);
+        g.conflict[i] = env.mpc().block_names(env.failure_conflicts());
       });
   g.reached_goal.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -436,6 +444,7 @@ int run_nmpc(const Options& o) {
   env_settings.obstacles = o.obstacles;
   env_settings.observe_motion = o.observe_motion;
   env_settings.obstacle_weight = o.obstacle_weight;
+  env_settings.walking.soft.obstacles = o.soft_obstacles;
   env_settings.success_reward = o.success_reward;
   if (o.obstacles > 0) {
     env_settings.goal_min_distance = 1.0;
@@ -479,14 +488,14 @@ int run_nmpc(const Options& o) {
   std::vector<walkgen::NmpcGoalTask> tasks;
   for (int g = 0; g < o.test_goals; ++g) tasks.push_back(envs[0].sample_task());
   const GoalOutcomes out = reached_goals(ppo, envs, tasks, pool);
-  int failed = 0, inside = 0, behind = 0, behind_reached = 0;
+  int failed = 0, inside = 0, behind = 0, behind_reached = 0;  // failed: failed QPs
   std::ofstream test(o.out + "/test_" + env_name(o) + ".csv");
-  test << "goal,goal_x,goal_y,end,steps,reward,min_clearance,end_clearance,end_speed\n";
+  test << "goal,goal_x,goal_y,end,steps,reward,min_clearance,end_clearance,end_speed,conflict\n";
   for (std::size_t i = 0; i < tasks.size(); ++i) {
     const auto& r = out.results[i];
     const bool in = out.clearance[i] < 0.0;
     const bool ok = out.reached_goal[i] != 0;
-    failed += r.end == walkgen::EpisodeEnd::failure;
+    failed += r.end == walkgen::EpisodeEnd::failure && !in;  // else a collision ended it
     inside += in;
     if (tasks[i].goal.x() < 0.0) {
       ++behind;
@@ -495,11 +504,12 @@ int run_nmpc(const Options& o) {
     test << i << ',' << tasks[i].goal.x() << ',' << tasks[i].goal.y() << ','
          << walkgen::to_string(r.end) << ',' << r.steps << ',' << r.reward << ','
          << (o.obstacles > 0 ? out.clearance[i] : 0.0) << ','
-         << (o.obstacles > 0 ? out.end_clearance[i] : 0.0) << ',' << out.end_speed[i] << '\n';
+         << (o.obstacles > 0 ? out.end_clearance[i] : 0.0) << ',' << out.end_speed[i] << ','
+         << out.conflict[i] << '\n';
   }
   std::printf(
       "test mode (policy mean) on %d held-out goals: %d reached (%d of %d behind the "
-      "robot), %d QP failures, %d with a footstep inside an obstacle\n",
+      "robot), %d QP failures, %d with a footstep inside an obstacle (a collision)\n",
       o.test_goals, out.reached, behind_reached, behind, failed, inside);
   // Figure 11.19: four goals, CoM paths and footsteps.
   std::ofstream traj(o.out + "/trajectories_" + env_name(o) + ".csv");
@@ -550,6 +560,7 @@ void apply_obstacle_defaults(Options& o, const CLI::App& app) {
   if (app.count("--observe-motion") == 0 && app.count("--no-observe-motion") == 0)
     o.observe_motion = true;
   if (app.count("--success-reward") == 0) o.success_reward = 1e4;
+  if (app.count("--soft-obstacles") == 0) o.soft_obstacles = kSoftObstacles;
   o.cfg.ppo.anneal_learning_rate = true;  // before --config
   o.cfg.run.epochs = kObstacleEpochs;     // before --config and --epochs
 }
@@ -664,6 +675,11 @@ int main(int argc, char** argv) {
   app.add_option("--obstacle-weight", o.obstacle_weight,
                  "nmpc: weight of the shaping term near obstacles, >= 0 "
                  "(NmpcGoalSettings::obstacle_weight; default 0)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--soft-obstacles", o.soft_obstacles,
+                 "nmpc: exact-penalty weight of the NMPC's soft obstacle rows, >= 0 "
+                 "(WalkingSettings::soft.obstacles; 0: hard, an infeasible QP fails; default 0, "
+                 "with obstacles 1e4)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--success-reward", o.success_reward,
                  "nmpc: reward for reaching the goal (NmpcGoalSettings::success_reward; "

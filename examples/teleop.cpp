@@ -423,6 +423,7 @@ int main(int argc, char** argv) {
     }
   }
   const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed ||
-                  status == walkgen::LoopStatus::not_converged;
+                  status == walkgen::LoopStatus::not_converged ||
+                  status == walkgen::LoopStatus::relaxed;
   return ok && csv.good() && stop_message.empty() ? 0 : 1;
 }

@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
 """PPO's reliability over seeds (issue 27): trains examples/ppo_train once per environment and
 seed, tests each policy on held-out goals, and writes one row per run to a CSV file with the
-columns env, seed, success_rate (plus reached, goals, qp_failures, timeouts, and seconds: the
-wall time of training and test).
+columns env, seed, success_rate (plus reached, goals, qp_failures, collisions: episodes ended
+by a footstep inside an obstacle, timeouts, and seconds: the wall time of training and test).
 
     /usr/bin/python3 python/ppo_seeds.py --ppo-train build/release/examples/ppo_train \\
         --out docs/results/ppo_seeds.csv --work ppo_seeds_runs --seeds 1 2 3 4 5 --require 0.95
 
 --jobs J trains J seeds at once (one thread each; a seed's result is the same either way).
 Each run is `ppo_train nmpc --seed S` (and `--obstacles 1`, with its defaults: the robot's
-motion in the state, success reward 10 000, an annealed step size, 200 epochs, for nmpc_obstacles);
+motion in the state, success reward 10 000, soft obstacle rows, an annealed step size, 200
+epochs, for nmpc_obstacles);
 success is measured on the 100 held-out goals of `run.evaluation_seed`, which training never
 draws. --epochs and --test-goals shorten the runs (the ctest ppo_seeds_short does). The CSV is
 written atomically (a temporary file renamed over it) after every run, so an interrupted study
@@ -27,7 +28,7 @@ ENVS = {  # env name -> ppo_train arguments and training epochs (docs/learning.m
     "nmpc": (["nmpc"], 30),
     "nmpc_obstacles": (["nmpc", "--obstacles", "1"], 200),
 }
-COLUMNS = ["env", "seed", "success_rate", "reached", "goals", "qp_failures", "timeouts",
+COLUMNS = ["env", "seed", "success_rate", "reached", "goals", "qp_failures", "collisions", "timeouts",
            "seconds"]
 
 
@@ -48,7 +49,8 @@ def result(test_csv):
         ends = [r["end"] if float(r["min_clearance"]) >= 0.0 else "inside_obstacle"
                 for r in csv.DictReader(f)]
     return {"reached": ends.count("success"), "goals": len(ends),
-            "qp_failures": ends.count("failure"), "timeouts": ends.count("truncated")}
+            "qp_failures": ends.count("failure"), "collisions": ends.count("inside_obstacle"),
+            "timeouts": ends.count("truncated")}
 
 
 def main():
@@ -96,9 +98,10 @@ def main():
         r.update(env=env, seed=seed, success_rate="%.2f" % (r["reached"] / r["goals"]),
                  seconds="%.0f" % (time.monotonic() - start))
         done[i] = r
-        print("[%d/%d] %s seed %d: success %s (%d of %d; %d QP failures, %d out of time), %s s"
-              % (len(done), len(runs), env, seed, r["success_rate"], r["reached"], r["goals"],
-                 r["qp_failures"], r["timeouts"], r["seconds"]), flush=True)
+        print("[%d/%d] %s seed %d: success %s (%d of %d; %d QP failures, %d collisions, %d out "
+              "of time), %s s" % (len(done), len(runs), env, seed, r["success_rate"], r["reached"],
+                                  r["goals"], r["qp_failures"], r["collisions"], r["timeouts"],
+                                  r["seconds"]), flush=True)
         write_atomically(a.out, [done[k] for k in sorted(done)])
 
     running = {}  # run index -> (process, start)

@@ -31,6 +31,8 @@ struct PyMpcResult {
   std::string message;
   int sqp_iterations = 0, qp_iterations = 0;
   double primal_residual = 0, constraint_violation = 0;
+  std::uint32_t relaxed_blocks = 0;
+  bool soft_fallback = false;
   CommandStatus last_command = CommandStatus::accepted;
   py::array_t<double> command;
 };
@@ -75,6 +77,8 @@ PyMpcResult copy_result(const Mpc::Result& r) {
   out.qp_iterations = r.qp_iterations;
   out.primal_residual = r.primal_residual;
   out.constraint_violation = r.constraint_violation;
+  out.relaxed_blocks = r.relaxed_blocks;
+  out.soft_fallback = r.soft_fallback;
   out.last_command = r.last_command;
   out.command = to_numpy(r.command);
   return out;
@@ -180,7 +184,8 @@ void bind_mpc(py::module_& m) {
   py::enum_<MpcStatus> status(m, "MpcStatus", "Outcome of a generator tick.");
   status.value("solved", MpcStatus::solved)
       .value("qp_failed", MpcStatus::qp_failed)
-      .value("not_converged", MpcStatus::not_converged);
+      .value("not_converged", MpcStatus::not_converged)
+      .value("relaxed", MpcStatus::relaxed);
   enum_as_string(status);
   py::enum_<CommandStatus> command(m, "CommandStatus", "What set_command() did with a command.");
   command.value("accepted", CommandStatus::accepted)
@@ -230,6 +235,11 @@ void bind_mpc(py::module_& m) {
       .def_readonly("qp_iterations", &PyMpcResult::qp_iterations)
       .def_readonly("primal_residual", &PyMpcResult::primal_residual)
       .def_readonly("constraint_violation", &PyMpcResult::constraint_violation)
+      .def_readonly("relaxed_blocks", &PyMpcResult::relaxed_blocks,
+                    "status 'relaxed': the soft constraint blocks the plan violates, bit k = "
+                    "row block k (WalkingMpc.block_names spells them)")
+      .def_readonly("soft_fallback", &PyMpcResult::soft_fallback,
+                    "an infeasible QP of this tick was solved with the soft constraints")
       .def_readonly("last_command", &PyMpcResult::last_command)
       .def_readonly("command", &PyMpcResult::command, "the command in use (vx, vy, wz)")
       .def_property_readonly("ok",
@@ -266,6 +276,8 @@ void bind_mpc(py::module_& m) {
           py::arg("state") = py::none(),
           "Restarts from `state` (default: the settings' initial state), forgetting the plan.")
       .def_property_readonly("reference_heading", &Mpc::reference_heading)
+      .def("block_names", &Mpc::block_names, py::arg("mask"),
+           "The constraint blocks of a mask (MpcResult.relaxed_blocks), joined by '+'.")
       .def(
           "set_obstacles",
           [](Mpc& mpc, const py::iterable& items) { mpc.set_obstacles(as_obstacles(items)); },

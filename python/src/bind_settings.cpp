@@ -79,6 +79,19 @@ void bind_settings(py::module_& m) {
       .def_readwrite("margin", &Obstacle::margin)
       .def("__repr__", &obstacle_repr);
 
+  using Soft = SoftConstraintWeights<double>;
+  py::class_<Soft>(m, "SoftConstraintWeights",
+                   "Exact-penalty weights per constraint block, 0 = hard: on an infeasible QP "
+                   "the generator walks the plan that violates the soft blocks least (status "
+                   "'relaxed'; docs/walking.md, 'Soft constraints').")
+      .def(py::init<>())
+      .def_readwrite("zmp_polygon", &Soft::zmp_polygon)
+      .def_readwrite("footstep_feasibility", &Soft::footstep_feasibility)
+      .def_readwrite("relative_yaw", &Soft::relative_yaw)
+      .def_readwrite("foot_separation", &Soft::foot_separation)
+      .def_readwrite("obstacles", &Soft::obstacles)
+      .def_readwrite("capture_point", &Soft::capture_point);
+
   py::class_<Settings> s(m, "WalkingSettings",
                          "The generator's settings (thesis Table 6.1; docs/yaml.md lists the "
                          "fields). WalkingSettings() is the HRP-2 preset.");
@@ -134,6 +147,7 @@ void bind_settings(py::module_& m) {
       .def_readwrite("sqp_iterations", &Settings::sqp_iterations)
       .def_readwrite("sqp_corrections", &Settings::sqp_corrections)
       .def_readwrite("sqp_tolerance", &Settings::sqp_tolerance)
+      .def_readwrite("soft", &Settings::soft, "SoftConstraintWeights (all 0: hard constraints)")
       .def_readwrite("max_state_distance", &Settings::max_state_distance)
       .def_readwrite("max_com_speed", &Settings::max_com_speed)
       .def_readwrite("max_com_acceleration", &Settings::max_com_acceleration)

@@ -196,7 +196,8 @@ void bind_simulation(py::module_& m) {
   py::enum_<LoopStatus> status(m, "LoopStatus", "What a tick of the closed loop ended with.");
   for (LoopStatus s :
        {LoopStatus::ok, LoopStatus::qp_failed, LoopStatus::fallen, LoopStatus::diverged,
-        LoopStatus::not_started, LoopStatus::not_converged, LoopStatus::fault}) {
+        LoopStatus::not_started, LoopStatus::not_converged, LoopStatus::fault,
+        LoopStatus::relaxed}) {
     status.value(to_string(s), s);
   }
   enum_as_string(status);

@@ -136,6 +136,30 @@ def test_nmpc_env_footsteps_walk_around_an_obstacle_or_fail_honestly():
     assert info["min_obstacle_clearance"] > 0.15
 
 
+def test_nmpc_env_soft_obstacle_rows_walk_around_or_end_in_a_collision():
+    # With the obstacle rows soft (WalkingSettings.soft) a QP that the linearisation made
+    # infeasible is solved again; a footstep inside the circle ends the episode as a failure.
+    def run(obstacle, soft):
+        settings = walkgen.NmpcGoalSettings()
+        settings.obstacles = 1
+        settings.walking.soft.obstacles = soft
+        return run_to_goal(envs.NmpcGoalEnv(settings, seed=4), (2.0, 0.1), [obstacle])
+
+    near_line = walkgen.CircleObstacle(1.0, 0.15, 0.15, 0.15)
+    obs, terminated, info = run(near_line, 0.0)
+    assert terminated and info["end"] == "failure" and "inconsistent" in info["message"]
+    obs, terminated, info = run(near_line, 1e4)
+    assert terminated and info["end"] == "success", info["message"]
+    assert info["min_obstacle_clearance"] >= 0.15 - 2e-3  # around it, the margin kept
+    # Walked straight at (the policy heads for the goal whatever is in the way), the least
+    # violating plan still puts a foot into the circle: a collision, not a success.
+    on_line = walkgen.CircleObstacle(1.0, 0.1, 0.15, 0.15)
+    obs, terminated, info = run(on_line, 1e4)
+    assert terminated and info["end"] == "failure"
+    assert info["message"] == "a footstep inside an obstacle"
+    assert -0.05 < info["min_obstacle_clearance"] < 0.0
+
+
 def test_nmpc_env_motion_in_the_state():
     """observe_motion adds 7 numbers: the CoM velocity in the robot frame, the action in
     effect, the support foot and the step's elapsed fraction."""

@@ -149,6 +149,28 @@ def test_obstacles_keep_the_footsteps_out():
         mpc.set_obstacles([(0, 0, 0.1), (1, 1, 0.1)])
 
 
+def test_soft_obstacle_rows_relax_an_infeasible_tick_and_say_so():
+    # An obstacle appears 0.25 m ahead of the robot walking at 0.3 m/s: the margin cannot be kept.
+    soft_settings = walkgen.WalkingSettings.hrp2()
+    assert soft_settings.soft.obstacles == 0.0  # hard by default
+    soft_settings.soft.obstacles = 1e4
+    soft = walkgen.WalkingMpc(soft_settings, obstacle_capacity=1)
+    hard = walkgen.WalkingMpc(walkgen.WalkingSettings.hrp2(), obstacle_capacity=1)
+    for mpc in (soft, hard):
+        assert all(r.status == "solved" for r in walk(mpc, 40, vx=0.3))
+        x, y = mpc.state().com_x[0], mpc.state().com_y[0]
+        mpc.set_obstacles([walkgen.CircleObstacle(x + 0.4, y, 0.15, margin=0.15)])
+    assert hard.solve().status == "qp_failed"
+    r = soft.solve()
+    assert r.status == "relaxed" and r.soft_fallback, r.message
+    assert soft.block_names(r.relaxed_blocks) == "obstacles (eq. 2.79-2.82)"
+    assert 1e-3 < r.constraint_violation < 0.15  # into the margin, not into the circle
+    bad = walkgen.WalkingSettings.hrp2()
+    bad.soft.obstacles = -1.0
+    with pytest.raises(ValueError, match="soft.obstacles"):
+        walkgen.WalkingMpc(bad)
+
+
 def test_horizon_argument_sizes_the_problem():
     short = walkgen.WalkingMpc(horizon=8)
     long_ = walkgen.WalkingMpc(horizon=32)

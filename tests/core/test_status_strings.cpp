@@ -51,8 +51,8 @@ struct Enumerators<QpStatus> {
 };
 template <>
 struct Enumerators<MpcStatus> {
-  static constexpr std::array<MpcStatus, 3> all = {MpcStatus::solved, MpcStatus::qp_failed,
-                                                   MpcStatus::not_converged};
+  static constexpr std::array<MpcStatus, 4> all = {MpcStatus::solved, MpcStatus::qp_failed,
+                                                   MpcStatus::not_converged, MpcStatus::relaxed};
 };
 template <>
 struct Enumerators<CommandStatus> {
@@ -66,9 +66,9 @@ struct Enumerators<IkStatus> {
 };
 template <>
 struct Enumerators<LoopStatus> {
-  static constexpr std::array<LoopStatus, 7> all = {
+  static constexpr std::array<LoopStatus, 8> all = {
       LoopStatus::ok,          LoopStatus::qp_failed,     LoopStatus::fallen, LoopStatus::diverged,
-      LoopStatus::not_started, LoopStatus::not_converged, LoopStatus::fault};
+      LoopStatus::not_started, LoopStatus::not_converged, LoopStatus::fault,  LoopStatus::relaxed};
 };
 template <>
 struct Enumerators<LoopMode> {
@@ -193,6 +193,7 @@ TEST(StatusStrings, NamesAreTheEnumerators) {
   EXPECT_STREQ(to_string(QpStatus::max_iterations), "max_iterations");
   EXPECT_STREQ(to_string(MpcStatus::qp_failed), "qp_failed");
   EXPECT_STREQ(to_string(MpcStatus::not_converged), "not_converged");
+  EXPECT_STREQ(to_string(MpcStatus::relaxed), "relaxed");
   EXPECT_STREQ(to_string(QpStatus::inaccurate), "inaccurate");
   EXPECT_STREQ(to_string(CommandStatus::non_finite), "non_finite");
   EXPECT_STREQ(to_string(IkStatus::invalid_input), "invalid_input");

@@ -150,8 +150,9 @@ def test_config_file_and_options(tmp_path):
 
 def test_obstacle_defaults_and_environment_options(tmp_path):
     """With obstacles the state adds the robot's motion (12 inputs), the success reward is
-    10 000 and the step size is annealed over 200 epochs; --no-observe-motion gives the thesis's state plus the obstacle (5 inputs); the
-    written config names the environment's options and a resumed run must share them."""
+    10 000, the NMPC's obstacle rows are soft and the step size is annealed over 200 epochs;
+    --no-observe-motion gives the thesis's state plus the obstacle (5 inputs); the written config
+    names the environment's options and a resumed run must share them."""
     import torch  # Debian's python3-torch (scripts/setup.sh)
     base = ["nmpc", "--obstacles", "1", "--steps", "2048", "--test-goals", "2", "--quiet"]
     short = base + ["--epochs", "1"]
@@ -166,7 +167,7 @@ def test_obstacle_defaults_and_environment_options(tmp_path):
         assert config.splitlines()[0] == (
             "# environment: ppo_train nmpc --obstacles 1 "
             + ("--no-observe-motion" if extra else "--observe-motion")
-            + " --success-reward 10000 --obstacle-weight 0"), config
+            + " --success-reward 10000 --obstacle-weight 0 --soft-obstacles 10000"), config
         assert "epochs: 1" in config
     # the run's defaults with obstacles: 200 epochs, the step size annealed
     r = run(base + ["--stop-after", "1", "--out", str(tmp_path / "defaults")])

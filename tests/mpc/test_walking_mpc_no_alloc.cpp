@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <vector>
 
 #include "support/count_allocations.hpp"
@@ -57,6 +58,38 @@ TEST(WalkingMpcNoAlloc, DynamicSizes) {
   s.n = 24;
   expect_ticks_do_not_allocate<
       walkgen::WalkingMpc<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>>(s);
+}
+
+// The soft-constraint fallback (an infeasible QP solved again as the elastic QP) and the
+// diagnosis of a failed one (conflicting_blocks) allocate nothing either.
+TEST(WalkingMpcNoAlloc, SoftFallbackAndDiagnosis) {
+  auto s = walkgen::hrp2_settings<double>();
+  auto soft_settings = s;
+  soft_settings.soft.obstacles = 1e4;
+  walkgen::WalkingMpc<double, 16> hard(s, 1), soft(soft_settings, 1);
+  const std::vector<walkgen::CircleObstacle<double>> none, blocking{{0.0, 0.0, 2.0, 0.5}};
+  int relaxed = 0, failed = 0;
+  std::uint32_t conflicts = 0;
+  const long news = count_allocations([&] {
+    for (int k = 0; k < 30; ++k) {
+      for (auto* mpc : {&hard, &soft}) {
+        (void)mpc->set_command({0.1, 0.0, 0.0});
+        if (k == 10) mpc->set_obstacles(blocking);  // the robot inside the margin
+        if (k == 12) mpc->set_obstacles(none);
+        const auto& r = mpc->solve();
+        relaxed += r.status == walkgen::MpcStatus::relaxed;
+        if (r.status == walkgen::MpcStatus::qp_failed) {
+          ++failed;
+          conflicts |= mpc->conflicting_blocks();
+        }
+        mpc->advance();
+      }
+    }
+  });
+  EXPECT_EQ(news, 0);
+  EXPECT_EQ(relaxed, 2);  // the soft generator's two blocked ticks
+  EXPECT_EQ(failed, 2);   // the hard generator's
+  EXPECT_NE(conflicts, 0u);
 }
 
 }  // namespace

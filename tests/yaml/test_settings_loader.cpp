@@ -65,6 +65,14 @@ void expect_same_settings(const Settings& a, const Settings& b) {
       {"max_com_acceleration", &Settings::max_com_acceleration},
       {"step_velocity_weight", &Settings::step_velocity_weight}};
   for (const auto& f : numbers) EXPECT_DOUBLE_EQ(a.*f.member, b.*f.member) << f.name;
+  using Soft = walkgen::SoftConstraintWeights<double>;
+  const Field<Soft, double> soft[] = {{"soft_zmp_polygon", &Soft::zmp_polygon},
+                                      {"soft_footstep_feasibility", &Soft::footstep_feasibility},
+                                      {"soft_relative_yaw", &Soft::relative_yaw},
+                                      {"soft_foot_separation", &Soft::foot_separation},
+                                      {"soft_obstacles", &Soft::obstacles},
+                                      {"soft_capture_point", &Soft::capture_point}};
+  for (const auto& f : soft) EXPECT_DOUBLE_EQ(a.soft.*f.member, b.soft.*f.member) << f.name;
   const Field<Settings, int> integers[] = {{"n_still", &Settings::n_still},
                                            {"n", &Settings::n},
                                            {"nwsr", &Settings::nwsr},
@@ -155,7 +163,11 @@ TEST(YamlSettings, MissingKeysKeepTheDefaults) {
   expected.max_com_speed = 3;
   expected.max_com_acceleration = 40;
   expected.step_velocity_weight = 5;
+  expected.soft = {1, 2, 3, 4, 5, 6};
   expect_same_settings(walkgen::walking_settings_from_yaml(
+                           "soft_zmp_polygon: 1\nsoft_footstep_feasibility: 2\n"
+                           "soft_relative_yaw: 3\nsoft_foot_separation: 4\nsoft_obstacles: 5\n"
+                           "soft_capture_point: 6\n"
                            "step_height: 0.07\nsupport_foot: right\nmax_relative_yaw: 0.2\n"
                            "max_relative_yaw_rate: 1.5\nsqp_iterations: 3\n"
                            "max_command: [0.3, 0.1, 0.2]\nfootstep_regularization: 1e-8\n"

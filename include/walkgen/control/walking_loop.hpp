@@ -58,8 +58,8 @@
 
 namespace walkgen {
 
-/// What a tick of the loop ended with. Anything but ok, qp_failed or not_converged stops the
-/// walk.
+/// What a tick of the loop ended with. Anything but ok, qp_failed, not_converged or relaxed
+/// stops the walk.
 enum class LoopStatus : std::uint8_t {
   ok,           ///< the tick's samples were executed
   qp_failed,    ///< the NMPC kept its previous (shifted) plan, which was executed; see MpcStatus
@@ -72,6 +72,10 @@ enum class LoopStatus : std::uint8_t {
   /// a fault ended the walk (LoopTick::reason, LoopTick::message): the loop stops the robot or
   /// holds it (LoopTick::mode)
   fault,
+  /// the NMPC's QP was infeasible and its soft constraints (WalkingSettings::soft) gave the
+  /// least-violating plan, which was executed (MpcStatus::relaxed; the generator's result names
+  /// the violated blocks)
+  relaxed,
 };
 
 /// The enumerator's name ("ok", ...), e.g. for logs; "unknown" for a value out of range.
@@ -91,6 +95,8 @@ constexpr const char* to_string(LoopStatus s) noexcept {
       return "not_converged";
     case LoopStatus::fault:
       return "fault";
+    case LoopStatus::relaxed:
+      return "relaxed";
   }
   return "unknown";
 }
@@ -588,8 +594,9 @@ class WalkingLoop {
     }
     end_tick();
     if (tick_.status == LoopStatus::ok && plan_valid && tick_.mpc != MpcStatus::solved) {
-      tick_.status =
-          tick_.mpc == MpcStatus::not_converged ? LoopStatus::not_converged : LoopStatus::qp_failed;
+      tick_.status = tick_.mpc == MpcStatus::not_converged ? LoopStatus::not_converged
+                     : tick_.mpc == MpcStatus::relaxed     ? LoopStatus::relaxed
+                                                           : LoopStatus::qp_failed;
       tick_.message = mpc_message;  // a failed tick only
     }
     return tick_;

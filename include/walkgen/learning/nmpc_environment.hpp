@@ -121,8 +121,10 @@ struct NmpcGoalTask {
 /// motion (7 numbers: CoM velocity in the robot frame [m/s], the action in effect, the support
 /// foot in the robot frame [m], the elapsed fraction of the step). Action: (v_x, ω_z) ∈ [−1, 1]²
 /// (clipped) times command_fraction · max_command; one step is ticks_per_step NMPC ticks (solve +
-/// advance). The episode ends on success, on the step budget (truncated) or on a failed QP
-/// (failure). Rewards: r_goal = d_{t−1} − d_t (distance of CoM to goal), r_frontal = ĝ_{a,t}[0] −
+/// advance). The episode ends on success, on the step budget (truncated), on a failed QP or on
+/// a footstep inside an obstacle's radius R (failure); a relaxed plan (MpcStatus::relaxed, with
+/// soft blocks in walking.soft: a footstep inside the margin m rather than a failed QP) is
+/// walked. Rewards: r_goal = d_{t−1} − d_t (distance of CoM to goal), r_frontal = ĝ_{a,t}[0] −
 /// ĝ_{a,t−1}[0] with ĝ_a the unit direction to the goal in the robot frame (the x axis turns
 /// towards the goal; the thesis's formula for it is garbled), r_time = the episode's time, and
 /// with obstacle_weight > 0 the shaping term Φ_t − Φ_{t−1} near obstacles.
@@ -196,9 +198,10 @@ class NmpcGoalEnv {
     WALKGEN_ASSERT(standing == CommandStatus::accepted);  // 0 is within any max_command >= 0
     steps_ = 0;
     failed_ = false;
+    conflicts_ = 0;
     action_ = {0.0f, 0.0f};
     min_clearance_ = std::numeric_limits<double>::infinity();
-    check_footsteps();
+    (void)check_footsteps();  // records the clearance (min_obstacle_clearance)
     previous_frontal_ = unit_goal_robot().x();
     previous_distance_ = distance();
     previous_potential_ = obstacle_potential();
@@ -246,14 +249,21 @@ class NmpcGoalEnv {
     action_ = {static_cast<float>(clipped(action[0])), static_cast<float>(clipped(action[1]))};
     for (int k = 0; k < s_.ticks_per_step; ++k) {
       const MpcResult<double>& solved = mpc_.solve();
-      if (solved.status != MpcStatus::solved) {
+      // relaxed: the QP was infeasible and walking.soft found the least-violating plan
+      if (solved.status != MpcStatus::solved && solved.status != MpcStatus::relaxed) {
         failed_ = true;
         r.message = solved.message;  // the NMPC's static string
+        conflicts_ = mpc_.conflicting_blocks();
         break;
       }
+      relaxed_ticks_ += solved.status == MpcStatus::relaxed;
       mpc_.advance();
       ++ticks_;
-      check_footsteps();
+      if (check_footsteps()) {
+        failed_ = true;
+        r.message = "a footstep inside an obstacle";
+        break;
+      }
     }
     ++steps_;
     const double d = distance();
@@ -289,6 +299,11 @@ class NmpcGoalEnv {
   /// Smallest distance of a footstep (support foot, every tick) to an obstacle's circle,
   /// ‖F − o‖ − R, over the episode [m]: negative means a footstep inside an obstacle.
   double min_obstacle_clearance() const { return min_clearance_; }
+  /// Ticks since construction whose plan was relaxed (MpcStatus::relaxed: walking.soft).
+  long relaxed_ticks() const { return relaxed_ticks_; }
+  /// When the episode's NMPC failed on an infeasible QP: its conflicting_blocks() mask (names
+  /// by mpc().block_names()); 0 otherwise.
+  std::uint32_t failure_conflicts() const { return conflicts_; }
   int steps() const { return steps_; }
   long ticks() const { return ticks_; }  ///< NMPC ticks since construction
   const Mpc& mpc() const { return mpc_; }
@@ -342,14 +357,18 @@ class NmpcGoalEnv {
     }
     return phi;
   }
-  void check_footsteps() {
+  /// Updates min_clearance_; true when a footstep is inside an obstacle (a collision).
+  bool check_footsteps() {
     const auto& st = mpc_.state();
+    bool inside = false;
     for (const auto& o : obstacles_) {
       for (const auto* f : {&st.support, &st.swing_origin}) {
         const double c = std::hypot(f->x - o.x, f->y - o.y) - o.radius;
         min_clearance_ = std::min(min_clearance_, c);
+        inside = inside || c < 0.0;
       }
     }
+    return inside;
   }
 
   NmpcGoalSettings s_;
@@ -359,7 +378,9 @@ class NmpcGoalEnv {
   Eigen::Vector2d goal_ = Eigen::Vector2d::Zero();
   int steps_ = 0;
   long ticks_ = 0;
+  long relaxed_ticks_ = 0;
   bool failed_ = false;
+  std::uint32_t conflicts_ = 0;              // failure_conflicts()
   std::array<float, kActionSize> action_{};  ///< the clipped action in effect (observe_motion)
   double previous_distance_ = 0.0, previous_frontal_ = 0.0, previous_potential_ = 0.0;
   double min_clearance_ = std::numeric_limits<double>::infinity();

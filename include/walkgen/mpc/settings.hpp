@@ -81,6 +81,32 @@ struct RobotGeometry {
   Scalar gravity = Scalar(9.81);  ///< [m/s²]
 };
 
+/// Exact-penalty weights of the soft-constraint fallback, one per constraint block
+/// (mpc/constraints/), per unit of a row's violation [1/m; 1/rad for the relative yaw]. When a
+/// tick's QP is infeasible, WalkingMpc solves it again with every row r of each block whose weight
+/// w is > 0 relaxed by two slacks s⁺, s⁻ ≥ 0, lb_r ≤ a_r U + s⁺ − s⁻ ≤ ub_r, at the cost w (s⁺ +
+/// s⁻) + 10⁻⁶ w (s⁺² + s⁻²) / 2 (the small quadratic keeps the QP strictly convex): the plan that
+/// violates those blocks least, in that weighted L1 norm, is walked and reported as
+/// MpcStatus::relaxed. A block of weight 0 stays hard; all 0 (the default) keeps the thesis's
+/// behaviour, an infeasible QP fails the tick. The fallback runs only when the hard QP has no
+/// solution, so it changes no feasible tick (docs/walking.md, "Soft constraints").
+template <typename Scalar = double>
+struct SoftConstraintWeights {
+  Scalar zmp_polygon = Scalar(0);           ///< ZMP in the support polygon (eq. 2.65–2.69)
+  Scalar footstep_feasibility = Scalar(0);  ///< footsteps in reach (eq. 2.70–2.72)
+  Scalar relative_yaw = Scalar(0);          ///< relative yaw and its rate (eq. 2.73–2.74)
+  Scalar foot_separation = Scalar(0);       ///< soles apart
+  /// Footsteps outside obstacles' R + m (eq. 2.79–2.82): a plan that cannot keep the margin m
+  /// enters it as little as it can instead of failing.
+  Scalar obstacles = Scalar(0);
+  Scalar capture_point = Scalar(0);  ///< terminal capture point
+  bool any() const {
+    return zmp_polygon > Scalar(0) || footstep_feasibility > Scalar(0) ||
+           relative_yaw > Scalar(0) || foot_separation > Scalar(0) || obstacles > Scalar(0) ||
+           capture_point > Scalar(0);
+  }
+};
+
 /// How the generator plans: timing, horizon, cost weights, solver limits, the commands it
 /// accepts and the states it believes. Part of WalkingSettings. In-class defaults: HRP-2's.
 template <typename Scalar = double>
@@ -139,6 +165,8 @@ struct GeneratorSettings {
   /// [m] largest tolerated violation of the nonlinear constraints (a distance beyond a
   /// polygon edge or inside an obstacle's margin) before a correction iteration.
   Scalar sqp_tolerance = Scalar(1e-3);
+  /// Soft constraints: the exact-penalty weight of each block, 0 = hard (SoftConstraintWeights).
+  SoftConstraintWeights<Scalar> soft;
   /// Plausibility limits of WalkingMpc::set_state(): a state beyond them is a feedback glitch,
   /// not a walking robot, and is rejected with an error. [m] the largest horizontal distance of
   /// the CoM, the swing foot and its origin from the support foot.
@@ -392,6 +420,13 @@ void validate(const GeneratorSettings<Scalar>& s) {
   C::count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::kMaxSqpIterations);
   C::count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::kMaxSqpIterations);
   C::between("WalkingSettings.sqp_tolerance", s.sqp_tolerance, 1e-9, lim::kMaxPosition);
+  C::up_to("WalkingSettings.soft.zmp_polygon", s.soft.zmp_polygon, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.soft.footstep_feasibility", s.soft.footstep_feasibility,
+           lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.soft.relative_yaw", s.soft.relative_yaw, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.soft.foot_separation", s.soft.foot_separation, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.soft.obstacles", s.soft.obstacles, lim::kMaxWeight, true);
+  C::up_to("WalkingSettings.soft.capture_point", s.soft.capture_point, lim::kMaxWeight, true);
   check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all() &&
                      (s.max_command.array() <= Scalar(1e3)).all(),
                  "WalkingSettings.max_command", "finite limits in [0, 1e3]",

@@ -12,7 +12,10 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -59,15 +62,21 @@ struct WalkingWorkspace {
   VectorX iterate;              ///< the U the QP was linearised at
   VectorX scratch;              ///< N entries for the cost terms
   VectorX c, c_lower, c_upper;  ///< c(U) and its bounds at the last plan (the violation)
+  /// The elastic QP of the soft-constraint fallback (WalkingModel::soften): U and a slack pair
+  /// per soft row; present when some block is soft (GeneratorSettings::soft).
+  std::optional<DenseQp<Scalar>> elastic;
 
-  explicit WalkingWorkspace(const WalkingLayout& L)
+  /// @param soft_rows rows of the soft blocks (WalkingModel::soft_rows()); 0: no elastic QP
+  explicit WalkingWorkspace(const WalkingLayout& L, Eigen::Index soft_rows = 0)
       : schedule(L.dims()),
         qp(L.num_vars(), L.num_rows()),
         iterate(VectorX::Zero(L.num_vars())),
         scratch(VectorX::Zero(L.dims().N)),
         c(VectorX::Zero(L.num_rows())),
         c_lower(VectorX::Zero(L.num_rows())),
-        c_upper(VectorX::Zero(L.num_rows())) {}
+        c_upper(VectorX::Zero(L.num_rows())) {
+    if (soft_rows > 0) elastic.emplace(L.num_vars() + 2 * soft_rows, L.num_rows());
+  }
 };
 
 /// The formulation. Template parameters as WalkingMpc's.
@@ -108,6 +117,19 @@ class WalkingModel {
   const Costs& costs() const { return costs_; }
   /// The Hessian's part that never changes: every cost term's constant blocks.
   const MatrixX& constant_hessian() const { return H_constant_; }
+
+  /// Soft constraints (GeneratorSettings::soft): row block k's exact-penalty weight, 0 = hard.
+  Scalar soft_weight(int k) const { return soft_weights_[std::size_t(k)]; }
+  /// Rows of the soft blocks: the slack pairs of the elastic QP.
+  Index soft_rows() const { return soft_rows_; }
+  /// The elastic QP from the hard one: variables (U, s⁺, s⁻ of each soft row in row order),
+  /// rows lb ≤ A U + s⁺ − s⁻ ≤ ub, s ≥ 0, cost ½UᵀHU + gᵀU + Σ w (s⁺ + s⁻) + 10⁻⁶ w (s⁺² + s⁻²)/2
+  /// (GeneratorSettings::soft). `elastic` is sized num_vars() + 2 soft_rows() by num_rows().
+  template <class Problem>
+  void soften(const Problem& hard, Problem& elastic) const;
+  /// The row blocks whose slacks in an elastic solution x exceed tol: bit k = row block k.
+  template <class Vector>
+  std::uint32_t relaxed_blocks(const Vector& x, Scalar tol) const;
 
   /// The view the blocks read, for a state, the obstacles in force and an iterate U.
   Tick tick(const WalkingState<Scalar>& state, const std::vector<Obstacle>& obstacles,
@@ -211,6 +233,20 @@ class WalkingModel {
   Constraints constraints_;
   Costs costs_;
   MatrixX H_constant_;
+  std::array<Scalar, kNumConstraints> soft_weights_{};
+  Index soft_rows_ = 0;
+
+  /// Calls f(block k, row, column of its s⁺ (s⁻ is the next), weight) for every soft row.
+  template <typename F>
+  void for_each_soft_row(F&& f) const {
+    Index j = layout_.num_vars();
+    for (int k = 0; k < kNumConstraints; ++k) {
+      const Scalar w = soft_weights_[std::size_t(k)];
+      if (!(w > Scalar(0))) continue;
+      const LayoutBlock& b = layout_.rows(k);
+      for (Index r = b.offset; r < b.offset + b.count(); ++r, j += 2) f(k, r, j, w);
+    }
+  }
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -238,6 +274,50 @@ WalkingModel<Scalar, N, FootEdges, HullEdges>::WalkingModel(const Settings& sett
         (cost.add_constant_hessian(layout_, preview_, H_constant_), ...);
       },
       costs_);
+  static_assert(kNumConstraints == 6,
+                "walkgen: SoftConstraintWeights names one weight per constraint block");
+  const auto& w = s_.soft;  // in the order of Constraints
+  soft_weights_ = {w.zmp_polygon, w.footstep_feasibility, w.relative_yaw, w.foot_separation,
+                   w.obstacles,   w.capture_point};
+  for (int k = 0; k < kNumConstraints; ++k) {
+    if (soft_weights_[std::size_t(k)] > Scalar(0)) soft_rows_ += layout_.rows(k).count();
+  }
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+template <class Problem>
+void WalkingModel<Scalar, N, FootEdges, HullEdges>::soften(const Problem& hard,
+                                                           Problem& elastic) const {
+  const Index n = layout_.num_vars();
+  elastic.H.setZero();
+  elastic.H.topLeftCorner(n, n) = hard.H;
+  elastic.g.head(n) = hard.g;
+  elastic.A.setZero();
+  elastic.A.leftCols(n) = hard.A;
+  elastic.lb = hard.lb;
+  elastic.ub = hard.ub;
+  elastic.l.head(n) = hard.l;
+  elastic.u.head(n) = hard.u;
+  for_each_soft_row([&](int, Index r, Index j, Scalar w) {
+    for (Index k = 0; k < 2; ++k) {
+      elastic.A(r, j + k) = k == 0 ? Scalar(1) : Scalar(-1);
+      elastic.H(j + k, j + k) = w;
+      elastic.g[j + k] = w;
+      elastic.l[j + k] = Scalar(0);
+      elastic.u[j + k] = Workspace::kInf;
+    }
+  });
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+template <class Vector>
+std::uint32_t WalkingModel<Scalar, N, FootEdges, HullEdges>::relaxed_blocks(const Vector& x,
+                                                                            Scalar tol) const {
+  std::uint32_t mask = 0;
+  for_each_soft_row([&](int k, Index, Index j, Scalar) {
+    if (x[j] > tol || x[j + 1] > tol) mask |= 1u << k;
+  });
+  return mask;
 }
 
 template <typename Scalar, int N, int FootEdges, int HullEdges>

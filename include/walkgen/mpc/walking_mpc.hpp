@@ -29,6 +29,9 @@
 /// precompiled WalkingMpc<double, 16> (docs/walking.md, "Compile time").
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "walkgen/core/foot.hpp"
@@ -191,6 +194,25 @@ class WalkingMpc {
   /// receive the QP's row bounds for that linearisation.
   void constraint_jacobian(const VectorX& U, RowMatrixX& J, VectorX& lower, VectorX& upper) const;
 
+  /// After a tick whose QP was infeasible (result().qp_status): which constraint blocks it
+  /// conflicts in. Bit k is set when dropping row block k (layout().rows(k).name) alone makes
+  /// the last QP feasible; 0 when no single block does (several conflict together), or when the
+  /// last QP was not infeasible. Re-solves the QP once per block with that block's rows free,
+  /// so it is for diagnostics after a failure, not for every tick; the workspace's QP keeps its
+  /// data but its result is that of the last trial, and the workspace's c_lower and c_upper
+  /// (scratch here) no longer hold the last plan's bounds. Allocation-free.
+  std::uint32_t conflicting_blocks();
+  /// The names of the blocks in a conflicting_blocks() mask, joined by '+' ("" for 0).
+  std::string block_names(std::uint32_t mask) const {
+    std::string names;
+    for (int k = 0; k < layout().num_row_blocks(); ++k) {
+      if ((mask >> k & 1u) == 0) continue;
+      if (!names.empty()) names += '+';
+      names += layout().rows(k).name;
+    }
+    return names;
+  }
+
   /// The initial state of a settings set: CoM from com_x/com_y, support foot at
   /// (foot_x, foot_y, foot_q), the other foot foot_distance beside it, standing.
   static State initial_state(const Settings& s) { return State::initial(s); }
@@ -249,7 +271,7 @@ class WalkingMpc {
 template <typename Scalar, int N, int FootEdges, int HullEdges>
 WalkingMpc<Scalar, N, FootEdges, HullEdges>::WalkingMpc(const Settings& settings,
                                                         Index obstacle_capacity)
-    : model_(settings, obstacle_capacity), ws_(model_.layout()) {
+    : model_(settings, obstacle_capacity), ws_(model_.layout(), model_.soft_rows()) {
   obstacles_.reserve(static_cast<std::size_t>(layout().dims().obstacles));
   obstacles_ = model_.settings().obstacles;
   ws_.qp.settings().max_iterations = model_.settings().nwsr;
@@ -278,8 +300,11 @@ auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
   result_.sqp_iterations = 0;
   result_.qp_iterations = 0;
   result_.message = "";
+  result_.relaxed_blocks = 0;
+  result_.soft_fallback = false;
   model_.prepare(state_, command_, heading_, plan_.U, ws_);
   shift_warm_start();
+  bool elastic = false;  // once a QP of this tick was infeasible: the soft fallback
   for (int it = 0; it < s.sqp_iterations + s.sqp_corrections; ++it) {
     if (it >= s.sqp_iterations && result_.constraint_violation <= s.sqp_tolerance) break;
     ws_.iterate = plan_.U;
@@ -288,9 +313,21 @@ auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
     model_.assemble_cost(t, qp.H, qp.g, ws_.scratch);
     if (it >= s.sqp_iterations) damp_yaws(qp.H, qp.g);
     model_.linearise(t, ws_.iterate, qp.A, qp.lb, qp.ub);
-    QpStatus st = ws_.qp.init();
-    if (st != QpStatus::invalid_input) st = ws_.qp.solve().status;
-    const auto& qr = ws_.qp.result();
+    QpStatus st = QpStatus::infeasible;
+    if (!elastic) {
+      st = ws_.qp.init();
+      if (st != QpStatus::invalid_input) st = ws_.qp.solve().status;
+    }
+    if ((st == QpStatus::infeasible || st == QpStatus::max_iterations) && ws_.elastic) {
+      if (!elastic) ws_.qp.reset_warm_start();
+      elastic = true;
+      model_.soften(qp, ws_.elastic->problem());
+      ws_.elastic->reset_warm_start();
+      ws_.elastic->settings().max_iterations = 10 * s.nwsr;
+      st = ws_.elastic->init();
+      if (st != QpStatus::invalid_input) st = ws_.elastic->solve().status;
+    }
+    const auto& qr = elastic ? ws_.elastic->result() : ws_.qp.result();
     result_.qp_status = st;
     result_.qp_iterations += qr.iterations;
     result_.primal_residual = qr.primal_residual;
@@ -305,9 +342,18 @@ auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
       ws_.qp.reset_warm_start();
       break;
     }
-    plan_.U = qr.x;
+    plan_.U = qr.x.head(num_vars());
+    if (elastic) result_.relaxed_blocks = model_.relaxed_blocks(qr.x, s.sqp_tolerance);
     result_.constraint_violation =
         model_.violation(tick(plan_.U), plan_.U, ws_.c, ws_.c_lower, ws_.c_upper);
+  }
+  result_.soft_fallback = elastic;
+  // The fallback may only have undone a linearisation: after the Gauss–Newton corrections the
+  // plan needs no slack and meets every constraint (solved, below); otherwise it is relaxed.
+  if (elastic && result_.status == MpcStatus::solved && result_.relaxed_blocks != 0) {
+    result_.status = MpcStatus::relaxed;
+    result_.message = "the QP was infeasible: the plan violates the soft constraints least";
+    return result_;
   }
   // Solved is a promise: the plan meets its nonlinear constraints within sqp_tolerance.
   if (result_.status == MpcStatus::solved && !(result_.constraint_violation <= s.sqp_tolerance)) {
@@ -354,6 +400,30 @@ void WalkingMpc<Scalar, N, FootEdges, HullEdges>::constraint_jacobian(const Vect
                                                                       RowMatrixX& J, VectorX& lower,
                                                                       VectorX& upper) const {
   model_.linearise(tick(U), U, J, lower, upper);
+}
+
+template <typename Scalar, int N, int FootEdges, int HullEdges>
+std::uint32_t WalkingMpc<Scalar, N, FootEdges, HullEdges>::conflicting_blocks() {
+  if (result_.qp_status != QpStatus::infeasible) return 0;
+  constexpr Scalar inf = std::numeric_limits<Scalar>::infinity();
+  auto& qp = ws_.qp.problem();
+  std::uint32_t mask = 0;
+  for (int k = 0; k < layout().num_row_blocks(); ++k) {
+    const LayoutBlock& b = layout().rows(k);
+    const Index o = b.offset, n = b.count();
+    if (n == 0) continue;
+    ws_.c_lower.segment(o, n) = qp.lb.segment(o, n);  // saved: c_lower/upper are scratch here
+    ws_.c_upper.segment(o, n) = qp.ub.segment(o, n);
+    qp.lb.segment(o, n).setConstant(-inf);
+    qp.ub.segment(o, n).setConstant(inf);
+    ws_.qp.reset_warm_start();
+    if (ws_.qp.update() == QpStatus::unsolved && ws_.qp.solve().status == QpStatus::solved)
+      mask |= 1u << k;
+    qp.lb.segment(o, n) = ws_.c_lower.segment(o, n);
+    qp.ub.segment(o, n) = ws_.c_upper.segment(o, n);
+  }
+  ws_.qp.reset_warm_start();
+  return mask;
 }
 
 template <typename Scalar, int N, int FootEdges, int HullEdges>

@@ -21,6 +21,11 @@ enum class MpcStatus : std::uint8_t {
   /// Result::constraint_violation > sqp_tolerance. The plan is that last iterate: the best
   /// available and executable, but outside its constraints by that much.
   not_converged,
+  /// The QP was infeasible (or hit nwsr), and the soft-constraint fallback
+  /// (GeneratorSettings::soft) found the plan that violates the soft blocks least:
+  /// Result::relaxed_blocks names those it violates beyond sqp_tolerance,
+  /// Result::constraint_violation says by how much; the hard blocks hold as in solved.
+  relaxed,
 };
 
 /// What happened to a velocity command.
@@ -41,6 +46,8 @@ constexpr const char* to_string(MpcStatus s) noexcept {
       return "qp_failed";
     case MpcStatus::not_converged:
       return "not_converged";
+    case MpcStatus::relaxed:
+      return "relaxed";
   }
   return "unknown";
 }
@@ -70,6 +77,14 @@ struct MpcResult {
   /// Largest violation of the nonlinear constraints (eq. 2.65–2.82) by the plan [m or rad]:
   /// the linearisation error that sqp_corrections iterations bring below sqp_tolerance.
   Scalar constraint_violation = Scalar(0);
+  /// MpcStatus::relaxed: the soft blocks whose slacks exceed sqp_tolerance (bit k = row block k
+  /// of WalkingMpc::layout(); WalkingMpc::block_names() spells them). 0 otherwise.
+  std::uint32_t relaxed_blocks = 0;
+  /// A QP of this tick was infeasible (or hit nwsr) and the soft-constraint fallback solved it
+  /// (GeneratorSettings::soft). With a plan that needs no slack after the Gauss–Newton
+  /// corrections (the conflict was the linearisation's: the obstacle rows' tangents at a poor
+  /// iterate) the status is solved; otherwise relaxed.
+  bool soft_fallback = false;
   CommandStatus last_command = CommandStatus::accepted;  ///< the last set_command() outcome
   Eigen::Matrix<Scalar, 3, 1> command = Eigen::Matrix<Scalar, 3, 1>::Zero();  ///< in use
 };

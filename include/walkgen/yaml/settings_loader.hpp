@@ -15,8 +15,9 @@
 ///   walkgen's own: max_relative_yaw, max_relative_yaw_rate, sqp_iterations, sqp_corrections,
 ///   sqp_tolerance, step_velocity_weight, heading_weight, min_foot_separation, max_command [3],
 ///   footstep_regularization,
-///   max_state_distance, max_com_speed, max_com_acceleration, and
-///   obstacles: [{x, y, radius, margin}, ...].
+///   max_state_distance, max_com_speed, max_com_acceleration, the soft-constraint weights
+///   soft_zmp_polygon, soft_footstep_feasibility, soft_relative_yaw, soft_foot_separation,
+///   soft_obstacles, soft_capture_point, and obstacles: [{x, y, radius, margin}, ...].
 /// Numbers must be finite (`.inf` and `.nan` are rejected); the integer keys (n, n_still, nwsr,
 /// sqp_iterations, sqp_corrections) are decimal digits in [0, 2147483647] (`010` is 10, `0x10`
 /// is an error). A missing key keeps its value from `defaults`. Obstacles: if the file has
@@ -294,6 +295,14 @@ const std::vector<YamlField<Scalar>>& yaml_fields() {
       {"max_state_distance", [](V v, T t) { v.read(t.s.generator().max_state_distance); }},
       {"max_com_speed", [](V v, T t) { v.read(t.s.generator().max_com_speed); }},
       {"max_com_acceleration", [](V v, T t) { v.read(t.s.generator().max_com_acceleration); }},
+      // Soft constraints (GeneratorSettings::soft): flat, as `obstacles` is taken.
+      {"soft_zmp_polygon", [](V v, T t) { v.read(t.s.generator().soft.zmp_polygon); }},
+      {"soft_footstep_feasibility",
+       [](V v, T t) { v.read(t.s.generator().soft.footstep_feasibility); }},
+      {"soft_relative_yaw", [](V v, T t) { v.read(t.s.generator().soft.relative_yaw); }},
+      {"soft_foot_separation", [](V v, T t) { v.read(t.s.generator().soft.foot_separation); }},
+      {"soft_obstacles", [](V v, T t) { v.read(t.s.generator().soft.obstacles); }},
+      {"soft_capture_point", [](V v, T t) { v.read(t.s.generator().soft.capture_point); }},
   };
   return fields;
 }
