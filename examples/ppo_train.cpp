@@ -121,8 +121,9 @@ std::string env_key(const Options& o) {
   if (o.env == "nmpc") {
     k << " --obstacles " << o.obstacles
       << (o.observe_motion ? " --observe-motion" : " --no-observe-motion") << " --success-reward "
-      << o.success_reward << " --obstacle-weight " << o.obstacle_weight << " --soft-obstacles "
-      << o.soft_obstacles;
+      << o.success_reward << " --obstacle-weight " << o.obstacle_weight;
+    // only when set: the runs before the option keep their settings hash (and --resume)
+    if (o.soft_obstacles != 0.0) k << " --soft-obstacles " << o.soft_obstacles;
   }
   return k.str() + "\n";
 }

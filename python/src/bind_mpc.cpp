@@ -276,6 +276,10 @@ void bind_mpc(py::module_& m) {
           py::arg("state") = py::none(),
           "Restarts from `state` (default: the settings' initial state), forgetting the plan.")
       .def_property_readonly("reference_heading", &Mpc::reference_heading)
+      .def("conflicting_blocks", &Mpc::conflicting_blocks,
+           "After a tick whose QP was infeasible: bit k set when dropping constraint row block "
+           "k alone makes the tick's last hard QP feasible (block_names spells them); 0 when "
+           "none does or it is not infeasible.")
       .def("block_names", &Mpc::block_names, py::arg("mask"),
            "The constraint blocks of a mask (MpcResult.relaxed_blocks), joined by '+'.")
       .def(

@@ -161,6 +161,7 @@ def test_soft_obstacle_rows_relax_an_infeasible_tick_and_say_so():
         x, y = mpc.state().com_x[0], mpc.state().com_y[0]
         mpc.set_obstacles([walkgen.CircleObstacle(x + 0.4, y, 0.15, margin=0.15)])
     assert hard.solve().status == "qp_failed"
+    assert "obstacles" in hard.block_names(hard.conflicting_blocks())
     r = soft.solve()
     assert r.status == "relaxed" and r.soft_fallback, r.message
     assert soft.block_names(r.relaxed_blocks) == "obstacles (eq. 2.79-2.82)"

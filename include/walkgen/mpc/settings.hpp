@@ -82,14 +82,16 @@ struct RobotGeometry {
 };
 
 /// Exact-penalty weights of the soft-constraint fallback, one per constraint block
-/// (mpc/constraints/), per unit of a row's violation [1/m; 1/rad for the relative yaw]. When a
-/// tick's QP is infeasible, WalkingMpc solves it again with every row r of each block whose weight
-/// w is > 0 relaxed by two slacks s⁺, s⁻ ≥ 0, lb_r ≤ a_r U + s⁺ − s⁻ ≤ ub_r, at the cost w (s⁺ +
-/// s⁻) + 10⁻⁶ w (s⁺² + s⁻²) / 2 (the small quadratic keeps the QP strictly convex): the plan that
-/// violates those blocks least, in that weighted L1 norm, is walked and reported as
-/// MpcStatus::relaxed. A block of weight 0 stays hard; all 0 (the default) keeps the thesis's
-/// behaviour, an infeasible QP fails the tick. The fallback runs only when the hard QP has no
-/// solution, so it changes no feasible tick (docs/walking.md, "Soft constraints").
+/// (mpc/constraints/), per unit of a row's violation [1/m; 1/rad for the relative yaw]: 0 (hard)
+/// or in [1e-6, 1e12]. When a tick's QP is infeasible or reaches nwsr, WalkingMpc solves it
+/// again with every row r of each block whose weight w is > 0 relaxed by two slacks s⁺, s⁻ ≥ 0,
+/// lb_r ≤ a_r U + s⁺ − s⁻ ≤ ub_r, at the cost w (s⁺ + s⁻ + (s⁺² + s⁻²)/2) (the quadratic keeps the
+/// QP strictly convex): the plan that violates those blocks least under that penalty is walked,
+/// reported as MpcStatus::relaxed while it needs the slacks. A block of weight 0 stays hard; all
+/// 0 (the default) keeps the thesis's behaviour, an infeasible QP fails the tick. The fallback
+/// changes no tick whose QP solves within nwsr; a tick that needs it solves up to
+/// 1 + sqp_corrections elastic QPs of up to 10 nwsr active-set changes each (docs/walking.md,
+/// "Soft constraints").
 template <typename Scalar = double>
 struct SoftConstraintWeights {
   Scalar zmp_polygon = Scalar(0);           ///< ZMP in the support polygon (eq. 2.65–2.69)
@@ -100,11 +102,6 @@ struct SoftConstraintWeights {
   /// enters it as little as it can instead of failing.
   Scalar obstacles = Scalar(0);
   Scalar capture_point = Scalar(0);  ///< terminal capture point
-  bool any() const {
-    return zmp_polygon > Scalar(0) || footstep_feasibility > Scalar(0) ||
-           relative_yaw > Scalar(0) || foot_separation > Scalar(0) || obstacles > Scalar(0) ||
-           capture_point > Scalar(0);
-  }
 };
 
 /// How the generator plans: timing, horizon, cost weights, solver limits, the commands it
@@ -141,7 +138,8 @@ struct GeneratorSettings {
   /// ignored: a wall-clock limit made the thesis's runs fail under load (docs/design.md §4);
   /// walkgen limits work by iterations (`nwsr`) instead.
   Scalar cpu_time = Scalar(0.01);
-  /// Maximal active-set changes per QP solve (`nwsr`); reaching it fails the tick safely.
+  /// Maximal active-set changes per QP solve (`nwsr`); reaching it fails the tick safely (with
+  /// soft constraints, `soft`, the tick falls back to the elastic QP instead).
   int nwsr = 100;
   /// Largest velocity command walked (|v_x| [m/s], |v_y| [m/s], |ω_z| [rad/s]): a larger
   /// component is clamped to it (CommandStatus::clamped), a non-finite command rejected. The
@@ -297,11 +295,12 @@ constexpr int kMaxSamplesPerStep = 1000;       ///< t_step / t
 constexpr int kMaxSqpIterations = 100;         ///< sqp_iterations, and sqp_corrections alike
 constexpr int kMaxActiveSetChanges = 1000000;  ///< nwsr
 constexpr int kMaxStillHorizons = 1000000;     ///< n_still
-constexpr double kMaxPosition = 1e6;  ///< [m] |com|, |foot|, obstacle centres, radii, sizes
-constexpr double kMinPeriod = 1e-4;   ///< [s] t, t_step, t_ds, t_feedback, command_period
-constexpr double kMaxPeriod = 1e3;    ///< [s] the same
-constexpr double kMaxWeight = 1e12;   ///< alpha, beta, gamma, step_velocity_weight, ...
-constexpr double kMinGamma = 1e-12;   ///< gamma keeps H definite; smaller leaves it singular
+constexpr double kMaxPosition = 1e6;     ///< [m] |com|, |foot|, obstacle centres, radii, sizes
+constexpr double kMinPeriod = 1e-4;      ///< [s] t, t_step, t_ds, t_feedback, command_period
+constexpr double kMaxPeriod = 1e3;       ///< [s] the same
+constexpr double kMaxWeight = 1e12;      ///< alpha, beta, gamma, step_velocity_weight, ...
+constexpr double kMinGamma = 1e-12;      ///< gamma keeps H definite; smaller leaves it singular
+constexpr double kMinSoftWeight = 1e-6;  ///< a soft constraint's weight, when not 0
 }  // namespace settings_limits
 
 namespace detail {
@@ -420,13 +419,18 @@ void validate(const GeneratorSettings<Scalar>& s) {
   C::count("WalkingSettings.sqp_iterations", s.sqp_iterations, 1, lim::kMaxSqpIterations);
   C::count("WalkingSettings.sqp_corrections", s.sqp_corrections, 0, lim::kMaxSqpIterations);
   C::between("WalkingSettings.sqp_tolerance", s.sqp_tolerance, 1e-9, lim::kMaxPosition);
-  C::up_to("WalkingSettings.soft.zmp_polygon", s.soft.zmp_polygon, lim::kMaxWeight, true);
-  C::up_to("WalkingSettings.soft.footstep_feasibility", s.soft.footstep_feasibility,
-           lim::kMaxWeight, true);
-  C::up_to("WalkingSettings.soft.relative_yaw", s.soft.relative_yaw, lim::kMaxWeight, true);
-  C::up_to("WalkingSettings.soft.foot_separation", s.soft.foot_separation, lim::kMaxWeight, true);
-  C::up_to("WalkingSettings.soft.obstacles", s.soft.obstacles, lim::kMaxWeight, true);
-  C::up_to("WalkingSettings.soft.capture_point", s.soft.capture_point, lim::kMaxWeight, true);
+  const std::pair<const char*, Scalar> soft[] = {
+      {"WalkingSettings.soft.zmp_polygon", s.soft.zmp_polygon},
+      {"WalkingSettings.soft.footstep_feasibility", s.soft.footstep_feasibility},
+      {"WalkingSettings.soft.relative_yaw", s.soft.relative_yaw},
+      {"WalkingSettings.soft.foot_separation", s.soft.foot_separation},
+      {"WalkingSettings.soft.obstacles", s.soft.obstacles},
+      {"WalkingSettings.soft.capture_point", s.soft.capture_point}};
+  for (const auto& [key, w] : soft) {
+    check_argument(w == Scalar(0) || (w >= Scalar(lim::kMinSoftWeight) && w <= lim::kMaxWeight),
+                   key, "0 (hard) or a weight in [1e-6, 1e12]", w,
+                   "a smaller weight leaves the elastic QP's slack Hessian singular");
+  }
   check_argument(s.max_command.allFinite() && (s.max_command.array() >= Scalar(0)).all() &&
                      (s.max_command.array() <= Scalar(1e3)).all(),
                  "WalkingSettings.max_command", "finite limits in [0, 1e3]",

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -123,13 +124,22 @@ class WalkingModel {
   /// Rows of the soft blocks: the slack pairs of the elastic QP.
   Index soft_rows() const { return soft_rows_; }
   /// The elastic QP from the hard one: variables (U, s⁺, s⁻ of each soft row in row order),
-  /// rows lb ≤ A U + s⁺ − s⁻ ≤ ub, s ≥ 0, cost ½UᵀHU + gᵀU + Σ w (s⁺ + s⁻) + 10⁻⁶ w (s⁺² + s⁻²)/2
+  /// rows lb ≤ A U + s⁺ − s⁻ ≤ ub, s ≥ 0, cost ½UᵀHU + gᵀU + Σ w (s⁺ + s⁻ + (s⁺² + s⁻²)/2)
   /// (GeneratorSettings::soft). `elastic` is sized num_vars() + 2 soft_rows() by num_rows().
   template <class Problem>
   void soften(const Problem& hard, Problem& elastic) const;
-  /// The row blocks whose slacks in an elastic solution x exceed tol: bit k = row block k.
-  template <class Vector>
-  std::uint32_t relaxed_blocks(const Vector& x, Scalar tol) const;
+
+  /// A plan's violation of the nonlinear constraints, hard and soft blocks apart.
+  struct Violation {
+    Scalar hard = Scalar(0);  ///< largest violation of a hard block's row
+    Scalar soft = Scalar(0);  ///< largest violation of a soft block's row
+    Scalar soft_change = std::numeric_limits<Scalar>::infinity();  ///< |soft − previous soft|
+    std::uint32_t soft_blocks = 0;  ///< soft blocks violated beyond tol (bit k = row block k)
+  };
+  /// Splits c(U) against its bounds (violation()'s outputs) by block; `previous` is the split
+  /// of the iteration before (for soft_change).
+  Violation split_violation(const VectorX& c, const VectorX& lower, const VectorX& upper,
+                            const Violation& previous, Scalar tol) const;
 
   /// The view the blocks read, for a state, the obstacles in force and an iterate U.
   Tick tick(const WalkingState<Scalar>& state, const std::vector<Obstacle>& obstacles,
@@ -310,14 +320,26 @@ void WalkingModel<Scalar, N, FootEdges, HullEdges>::soften(const Problem& hard,
 }
 
 template <typename Scalar, int N, int FootEdges, int HullEdges>
-template <class Vector>
-std::uint32_t WalkingModel<Scalar, N, FootEdges, HullEdges>::relaxed_blocks(const Vector& x,
-                                                                            Scalar tol) const {
-  std::uint32_t mask = 0;
-  for_each_soft_row([&](int k, Index, Index j, Scalar) {
-    if (x[j] > tol || x[j + 1] > tol) mask |= 1u << k;
-  });
-  return mask;
+auto WalkingModel<Scalar, N, FootEdges, HullEdges>::split_violation(const VectorX& c,
+                                                                    const VectorX& lower,
+                                                                    const VectorX& upper,
+                                                                    const Violation& previous,
+                                                                    Scalar tol) const -> Violation {
+  Violation v;
+  for (int k = 0; k < kNumConstraints; ++k) {
+    const LayoutBlock& b = layout_.rows(k);
+    Scalar worst = Scalar(0);
+    for (Index r = b.offset; r < b.offset + b.count(); ++r)
+      worst = std::max({worst, lower[r] - c[r], c[r] - upper[r]});
+    if (soft_weights_[std::size_t(k)] > Scalar(0)) {
+      v.soft = std::max(v.soft, worst);
+      if (worst > tol) v.soft_blocks |= 1u << k;
+    } else {
+      v.hard = std::max(v.hard, worst);
+    }
+  }
+  v.soft_change = std::abs(v.soft - previous.soft);
+  return v;
 }
 
 template <typename Scalar, int N, int FootEdges, int HullEdges>

@@ -194,10 +194,11 @@ class WalkingMpc {
   /// receive the QP's row bounds for that linearisation.
   void constraint_jacobian(const VectorX& U, RowMatrixX& J, VectorX& lower, VectorX& upper) const;
 
-  /// After a tick whose QP was infeasible (result().qp_status): which constraint blocks it
-  /// conflicts in. Bit k is set when dropping row block k (layout().rows(k).name) alone makes
-  /// the last QP feasible; 0 when no single block does (several conflict together), or when the
-  /// last QP was not infeasible. Re-solves the QP once per block with that block's rows free,
+  /// After a tick whose QP was infeasible (result().qp_status, or result().soft_fallback): which
+  /// constraint blocks the tick's last hard QP conflicts in. Bit k is set when dropping row
+  /// block k (layout().rows(k).name) alone makes it feasible; 0 when no single block does
+  /// (several conflict together), or when that QP is not infeasible (e.g. the fallback's
+  /// corrections moved the linearisation). Re-solves the QP once per block with its rows free,
   /// so it is for diagnostics after a failure, not for every tick; the workspace's QP keeps its
   /// data but its result is that of the last trial, and the workspace's c_lower and c_upper
   /// (scratch here) no longer hold the last plan's bounds. Allocation-free.
@@ -304,9 +305,17 @@ auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
   result_.soft_fallback = false;
   model_.prepare(state_, command_, heading_, plan_.U, ws_);
   shift_warm_start();
-  bool elastic = false;  // once a QP of this tick was infeasible: the soft fallback
+  // The soft fallback: from the QP that was infeasible (or reached nwsr) on, every QP of this
+  // tick is the elastic one, warm-started from the one before.
+  bool elastic = false;
+  typename Model::Violation split;  // with the fallback: hard and soft blocks apart
   for (int it = 0; it < s.sqp_iterations + s.sqp_corrections; ++it) {
-    if (it >= s.sqp_iterations && result_.constraint_violation <= s.sqp_tolerance) break;
+    if (it >= s.sqp_iterations) {
+      // Converged: within sqp_tolerance; with the fallback, the hard blocks within it and the
+      // soft blocks' violation settled (a relaxed plan keeps some by design).
+      if (!elastic && result_.constraint_violation <= s.sqp_tolerance) break;
+      if (elastic && split.hard <= s.sqp_tolerance && split.soft_change <= s.sqp_tolerance) break;
+    }
     ws_.iterate = plan_.U;
     const auto t = tick(ws_.iterate);
     auto& qp = ws_.qp.problem();  // assembled in place: the solver owns the data
@@ -319,11 +328,13 @@ auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
       if (st != QpStatus::invalid_input) st = ws_.qp.solve().status;
     }
     if ((st == QpStatus::infeasible || st == QpStatus::max_iterations) && ws_.elastic) {
-      if (!elastic) ws_.qp.reset_warm_start();
-      elastic = true;
+      if (!elastic) {
+        ws_.qp.reset_warm_start();
+        ws_.elastic->reset_warm_start();
+        ws_.elastic->settings().max_iterations = 10 * s.nwsr;
+        elastic = true;
+      }
       model_.soften(qp, ws_.elastic->problem());
-      ws_.elastic->reset_warm_start();
-      ws_.elastic->settings().max_iterations = 10 * s.nwsr;
       st = ws_.elastic->init();
       if (st != QpStatus::invalid_input) st = ws_.elastic->solve().status;
     }
@@ -340,19 +351,27 @@ auto WalkingMpc<Scalar, N, FootEdges, HullEdges>::solve() -> const Result& {
         result_.message = qr.message;
       }
       ws_.qp.reset_warm_start();
+      if (elastic) ws_.elastic->reset_warm_start();
       break;
     }
     plan_.U = qr.x.head(num_vars());
-    if (elastic) result_.relaxed_blocks = model_.relaxed_blocks(qr.x, s.sqp_tolerance);
     result_.constraint_violation =
         model_.violation(tick(plan_.U), plan_.U, ws_.c, ws_.c_lower, ws_.c_upper);
+    if (elastic)
+      split = model_.split_violation(ws_.c, ws_.c_lower, ws_.c_upper, split, s.sqp_tolerance);
   }
   result_.soft_fallback = elastic;
-  // The fallback may only have undone a linearisation: after the Gauss–Newton corrections the
-  // plan needs no slack and meets every constraint (solved, below); otherwise it is relaxed.
-  if (elastic && result_.status == MpcStatus::solved && result_.relaxed_blocks != 0) {
-    result_.status = MpcStatus::relaxed;
-    result_.message = "the QP was infeasible: the plan violates the soft constraints least";
+  if (elastic && result_.status == MpcStatus::solved) {
+    // The fallback may only have undone a poor linearisation: then the plan meets every
+    // constraint (solved, below). Otherwise it is relaxed if the hard blocks hold.
+    result_.relaxed_blocks = split.soft_blocks;
+    if (split.hard > s.sqp_tolerance) {
+      result_.status = MpcStatus::not_converged;
+      result_.message = "the plan violates its hard constraints beyond sqp_tolerance";
+    } else if (split.soft_blocks != 0) {
+      result_.status = MpcStatus::relaxed;
+      result_.message = "the QP was infeasible: the plan violates the soft constraints least";
+    }
     return result_;
   }
   // Solved is a promise: the plan meets its nonlinear constraints within sqp_tolerance.
@@ -404,23 +423,33 @@ void WalkingMpc<Scalar, N, FootEdges, HullEdges>::constraint_jacobian(const Vect
 
 template <typename Scalar, int N, int FootEdges, int HullEdges>
 std::uint32_t WalkingMpc<Scalar, N, FootEdges, HullEdges>::conflicting_blocks() {
-  if (result_.qp_status != QpStatus::infeasible) return 0;
-  constexpr Scalar inf = std::numeric_limits<Scalar>::infinity();
-  auto& qp = ws_.qp.problem();
-  std::uint32_t mask = 0;
-  for (int k = 0; k < layout().num_row_blocks(); ++k) {
-    const LayoutBlock& b = layout().rows(k);
-    const Index o = b.offset, n = b.count();
-    if (n == 0) continue;
-    ws_.c_lower.segment(o, n) = qp.lb.segment(o, n);  // saved: c_lower/upper are scratch here
-    ws_.c_upper.segment(o, n) = qp.ub.segment(o, n);
-    qp.lb.segment(o, n).setConstant(-inf);
-    qp.ub.segment(o, n).setConstant(inf);
+  if (result_.qp_status != QpStatus::infeasible && !result_.soft_fallback) return 0;
+  // The hard QP as the tick last assembled it, factorised afresh (after the fallback took over
+  // it was assembled but not factorised): is it infeasible?
+  const auto infeasible = [&] {
     ws_.qp.reset_warm_start();
-    if (ws_.qp.update() == QpStatus::unsolved && ws_.qp.solve().status == QpStatus::solved)
-      mask |= 1u << k;
-    qp.lb.segment(o, n) = ws_.c_lower.segment(o, n);
-    qp.ub.segment(o, n) = ws_.c_upper.segment(o, n);
+    return ws_.qp.init() == QpStatus::unsolved && ws_.qp.solve().status == QpStatus::infeasible;
+  };
+  const auto solved = [&] {
+    ws_.qp.reset_warm_start();
+    return ws_.qp.update() == QpStatus::unsolved && ws_.qp.solve().status == QpStatus::solved;
+  };
+  std::uint32_t mask = 0;
+  if (infeasible()) {
+    constexpr Scalar inf = std::numeric_limits<Scalar>::infinity();
+    auto& qp = ws_.qp.problem();
+    for (int k = 0; k < layout().num_row_blocks(); ++k) {
+      const LayoutBlock& b = layout().rows(k);
+      const Index o = b.offset, n = b.count();
+      if (n == 0) continue;
+      ws_.c_lower.segment(o, n) = qp.lb.segment(o, n);  // saved: c_lower/upper are scratch here
+      ws_.c_upper.segment(o, n) = qp.ub.segment(o, n);
+      qp.lb.segment(o, n).setConstant(-inf);
+      qp.ub.segment(o, n).setConstant(inf);
+      if (solved()) mask |= 1u << k;  // only bounds changed since init(): update() suffices
+      qp.lb.segment(o, n) = ws_.c_lower.segment(o, n);
+      qp.ub.segment(o, n) = ws_.c_upper.segment(o, n);
+    }
   }
   ws_.qp.reset_warm_start();
   return mask;

@@ -267,7 +267,9 @@ class NavigationEpisode {
     result_.commands.push_back(command);
     result_.rejected_commands += loop_->set_command(command) != CommandStatus::accepted;
     const LoopTick& tick = loop_->tick();
-    result_.qp_failures += tick.mpc != MpcStatus::solved;
+    // not solved, not relaxed (a relaxed plan comes from a solved elastic QP:
+    // WalkingSettings::soft)
+    result_.qp_failures += tick.mpc != MpcStatus::solved && tick.mpc != MpcStatus::relaxed;
     for (const auto& s : loop_->samples()) {
       if (s.zmp.valid) {
         result_.zmp_distance.push_back(

@@ -219,7 +219,9 @@ inline TaskResult run_task(
       stopped_at = robot.output().time;
     }
     const LoopTick& tick = loop.tick();
-    result.qp_failures += tick.mpc != MpcStatus::solved;
+    // not solved, not relaxed (a relaxed plan comes from a solved elastic QP:
+    // WalkingSettings::soft)
+    result.qp_failures += tick.mpc != MpcStatus::solved && tick.mpc != MpcStatus::relaxed;
     result.ik_failures += tick.ik_failures;
     for (const auto& s : loop.samples()) {
       TaskRow row;
