@@ -194,10 +194,9 @@ class Simulation {
 
 void bind_simulation(py::module_& m) {
   py::enum_<LoopStatus> status(m, "LoopStatus", "What a tick of the closed loop ended with.");
-  for (LoopStatus s :
-       {LoopStatus::ok, LoopStatus::qp_failed, LoopStatus::fallen, LoopStatus::diverged,
-        LoopStatus::not_started, LoopStatus::not_converged, LoopStatus::fault,
-        LoopStatus::relaxed}) {
+  for (LoopStatus s : {LoopStatus::ok, LoopStatus::qp_failed, LoopStatus::fallen,
+                       LoopStatus::diverged, LoopStatus::not_started, LoopStatus::not_converged,
+                       LoopStatus::fault, LoopStatus::relaxed}) {
     status.value(to_string(s), s);
   }
   enum_as_string(status);

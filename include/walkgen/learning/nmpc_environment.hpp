@@ -256,7 +256,6 @@ class NmpcGoalEnv {
         conflicts_ = mpc_.conflicting_blocks();
         break;
       }
-      relaxed_ticks_ += solved.status == MpcStatus::relaxed;
       mpc_.advance();
       ++ticks_;
       if (check_footsteps()) {
@@ -299,8 +298,6 @@ class NmpcGoalEnv {
   /// Smallest distance of a footstep (support foot, every tick) to an obstacle's circle,
   /// ‖F − o‖ − R, over the episode [m]: negative means a footstep inside an obstacle.
   double min_obstacle_clearance() const { return min_clearance_; }
-  /// Ticks since construction whose plan was relaxed (MpcStatus::relaxed: walking.soft).
-  long relaxed_ticks() const { return relaxed_ticks_; }
   /// When the episode's NMPC failed on an infeasible QP: its conflicting_blocks() mask (names
   /// by mpc().block_names()); 0 otherwise.
   std::uint32_t failure_conflicts() const { return conflicts_; }
@@ -378,7 +375,6 @@ class NmpcGoalEnv {
   Eigen::Vector2d goal_ = Eigen::Vector2d::Zero();
   int steps_ = 0;
   long ticks_ = 0;
-  long relaxed_ticks_ = 0;
   bool failed_ = false;
   std::uint32_t conflicts_ = 0;              // failure_conflicts()
   std::array<float, kActionSize> action_{};  ///< the clipped action in effect (observe_motion)

@@ -140,6 +140,14 @@ class WalkingModel {
   /// of the iteration before (for soft_change).
   Violation split_violation(const VectorX& c, const VectorX& lower, const VectorX& upper,
                             const Violation& previous, Scalar tol) const;
+  /// max(lower − c, c − upper, 0) over the rows [first, first + count).
+  static Scalar rows_violation(const VectorX& c, const VectorX& lower, const VectorX& upper,
+                               Index first, Index count) {
+    Scalar worst = Scalar(0);
+    for (Index r = first; r < first + count; ++r)
+      worst = std::max({worst, lower[r] - c[r], c[r] - upper[r]});
+    return worst;
+  }
 
   /// The view the blocks read, for a state, the obstacles in force and an iterate U.
   Tick tick(const WalkingState<Scalar>& state, const std::vector<Obstacle>& obstacles,
@@ -328,9 +336,7 @@ auto WalkingModel<Scalar, N, FootEdges, HullEdges>::split_violation(const Vector
   Violation v;
   for (int k = 0; k < kNumConstraints; ++k) {
     const LayoutBlock& b = layout_.rows(k);
-    Scalar worst = Scalar(0);
-    for (Index r = b.offset; r < b.offset + b.count(); ++r)
-      worst = std::max({worst, lower[r] - c[r], c[r] - upper[r]});
+    const Scalar worst = rows_violation(c, lower, upper, b.offset, b.count());
     if (soft_weights_[std::size_t(k)] > Scalar(0)) {
       v.soft = std::max(v.soft, worst);
       if (worst > tol) v.soft_blocks |= 1u << k;
@@ -385,9 +391,7 @@ Scalar WalkingModel<Scalar, N, FootEdges, HullEdges>::violation(const Tick& t, c
                                                                 VectorX& upper) const {
   constraint_values<Scalar>(t, U, c);
   constraint_bounds(t, lower, upper);
-  Scalar worst = Scalar(0);
-  for (Index r = 0; r < c.size(); ++r) worst = std::max({worst, lower[r] - c[r], c[r] - upper[r]});
-  return worst;
+  return rows_violation(c, lower, upper, 0, c.size());
 }
 
 }  // namespace walkgen
