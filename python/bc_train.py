@@ -7,11 +7,16 @@ disparity/) and exports it as TorchScript for the C++ controller.
                                           [--lr 1e-3] [--sequence 5] [--chunk 16] [--width 8]
                                           [--seed 0] [--max-steps N] [--threads 2]
                                           [--init OUT/best.pth] [--augment]
+                                          [--normalize-brightness]
 
 Pre-processing (the C++ side, walkgen/torch/velocity_network.hpp, does the same): the left RGB
 image and the WLS disparity (240 x 320) are averaged over 4 x 4 blocks to 60 x 80; RGB is scaled
 to [0, 1], disparity [px] divided by 32 (D of the thesis); the four channels are stacked to
-RGBD. The processed frames of each folder are cached in DATA/bc_frames_60x80.npy.
+RGBD. The processed frames of each folder are cached in DATA/bc_frames_60x80.npy. With
+--normalize-brightness the network itself (its `encode`, so the exported model and the C++ side
+alike) first scales each frame's RGB so that its mean is REFERENCE_BRIGHTNESS: a frame lit twice
+as brightly or four times as dimly gives the same features (up to quantisation, noise and
+clipping), while colours keep their ratios.
 
 Samples are the thesis's sequences: the command after a frame is regressed from that frame and
 the `sequence` - 1 before it (5 frames, 2 s at the NMPC's 0.4 s ticks), each frame encoded by
@@ -77,23 +82,45 @@ def load_frame(folder, rgb_path, disparity_path):
 # a new floor) lie outside what the recorder's randomisation and this augmentation produce.
 AUGMENT_BRIGHTNESS = (0.45, 1.5)  # RGB gain, log-uniform
 AUGMENT_CHANNEL_GAIN = (0.85, 1.15)  # per colour channel, uniform
+# Hue rotation [deg] of the whole frame about the grey axis, uniform. The recorder's target hues
+# (-25 to 130 deg) then span -85 to 175 deg: the blue_target shift's 225 deg stays 50 deg away
+# from every target hue training sees, on either side.
+AUGMENT_HUE = (-60.0, 45.0)
 AUGMENT_CONTRAST = (0.7, 1.3)  # about the window's mean, uniform
 AUGMENT_NOISE = 0.03  # largest std of the pixel noise on RGB in [0, 1]
 AUGMENT_SHIFT = 2  # largest shift [px of the 60 x 80 frame] (camera pose)
 AUGMENT_DISPARITY_NOISE = 0.02  # std of the disparity noise (units of D = 32 px)
 AUGMENT_DISPARITY_DROPOUT = 0.05  # largest share of disparity pixels lost (0: no match)
 
+# --normalize-brightness: the mean RGB a frame is scaled to (the default room's frames average
+# about 0.22 in [0, 1]), and what keeps a black frame finite.
+REFERENCE_BRIGHTNESS = 0.22
+BRIGHTNESS_FLOOR = 0.002
+
+
+def hue_rotation(degrees):
+    """The 3 x 3 matrix that turns RGB colours about the grey axis (1, 1, 1) by `degrees`: their
+    hue moves by about that angle (red toward green for positive angles), brightness and
+    saturation nearly kept; greys stay as they are."""
+    a = math.radians(degrees)
+    c, s = math.cos(a), math.sin(a)
+    k = 1.0 / math.sqrt(3.0)
+    skew = torch.tensor([[0.0, -k, k], [k, 0.0, -k], [-k, k, 0.0]])
+    return c * torch.eye(3) + s * skew + (1.0 - c) * torch.full((3, 3), 1.0 / 3.0)
+
 
 def augment(window, generator=None):
     """A photometric and geometric variation of a window of frames (frames x 4 x H x W: RGB in
     [0, 1], then the scaled disparity), drawn with `generator` (torch.Generator, or torch's
-    global one): brightness, colour balance, contrast and pixel noise on RGB, a shift of the
+    global one): hue, brightness, colour balance, contrast and pixel noise on RGB, a shift of the
     whole image, noise and lost pixels on the disparity. Returns a new tensor."""
     def uniform(low, high, shape=()):
         return low + (high - low) * torch.rand(shape, generator=generator)
 
     x = window.clone().float()
     rgb, disparity = x[:, :3], x[:, 3:]
+    turn = hue_rotation(float(uniform(*AUGMENT_HUE)))
+    rgb = torch.einsum("ij,fjhw->fihw", turn, rgb).clamp(0.0, 1.0)
     lo, hi = math.log(AUGMENT_BRIGHTNESS[0]), math.log(AUGMENT_BRIGHTNESS[1])
     gain = torch.exp(uniform(lo, hi)) * uniform(*AUGMENT_CHANNEL_GAIN, (1, 3, 1, 1))
     rgb = rgb * gain
@@ -221,8 +248,11 @@ class UNetLstm(nn.Module):
     """Figure 11.2: a U-Net (two poolings, skip connections by concatenation) per frame, a
     fully connected layer, an LSTM over the sequence, and a tanh regression of (v_x, omega_z)."""
 
-    def __init__(self, width=16, hidden=64, sequence=5):
+    def __init__(self, width=16, hidden=64, sequence=5, normalize_brightness=False):
         super().__init__()
+        self.normalize_brightness = normalize_brightness
+        self.reference_brightness = REFERENCE_BRIGHTNESS  # attributes: TorchScript keeps them
+        self.brightness_floor = BRIGHTNESS_FLOOR
         w = width
         self.down1, self.down2, self.bottom = block(4, w), block(w, 2 * w), block(2 * w, 4 * w)
         self.up2, self.up1 = block(6 * w, 2 * w), block(3 * w, w)
@@ -238,6 +268,11 @@ class UNetLstm(nn.Module):
     @torch.jit.export
     def encode(self, x):
         """Frames (N, 4, 60, 80) -> features (N, hidden)."""
+        if self.normalize_brightness:
+            rgb = x[:, :3]
+            mean = rgb.mean(dim=(1, 2, 3), keepdim=True)
+            scale = self.reference_brightness / (mean + self.brightness_floor)
+            x = torch.cat([rgb * scale, x[:, 3:]], dim=1)
         d1 = self.down1(x)
         d2 = self.down2(self.pool(d1))
         b = self.bottom(self.pool(d2))
@@ -320,6 +355,11 @@ def main():
     parser.add_argument("--init", help="start from these weights (OUT/best.pth of an earlier "
                         "run, e.g. to fine-tune after a DAgger round); with --epochs 0 only "
                         "evaluate and export them")
+    parser.add_argument("--normalize-brightness", action="store_true",
+                        help="scale each frame's RGB to a mean of %.2f inside the network (the "
+                        "exported model does it too): features independent of the light's "
+                        "intensity; give it again when fine-tuning such a model with --init"
+                        % REFERENCE_BRIGHTNESS)
     args = parser.parse_args()
     if args.epochs < (0 if args.init else 1) or args.batch < 1 or args.sequence < 1 \
             or not args.lr > 0:
@@ -362,7 +402,8 @@ def main():
     loader = torch.utils.data.DataLoader(train, batch_size=batch, shuffle=True)
     val_loader = torch.utils.data.DataLoader(val, batch_size=8)
 
-    model = UNetLstm(args.width, sequence=args.sequence)
+    model = UNetLstm(args.width, sequence=args.sequence,
+                     normalize_brightness=args.normalize_brightness)
     if args.init:
         try:
             model.load_state_dict(torch.load(args.init))

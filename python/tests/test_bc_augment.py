@@ -65,3 +65,66 @@ def test_the_same_generator_seed_gives_the_same_window(bc_train):
     c = bc_train.augment(x, torch.Generator().manual_seed(10))
     assert torch.equal(a, b)
     assert not torch.equal(a, c)
+
+
+def test_normalized_brightness_makes_the_features_independent_of_the_light(bc_train, tmp_path,
+                                                                          source_dir):
+    # the shipped network's weights (trained without the normalisation): features that see light
+    shipped = torch.jit.load(str(source_dir / "models" / "bc_final.pt")).state_dict()
+    x = window(3)
+    dim = x.clone()
+    dim[:, :3] *= 0.25  # bc_evaluate's dim shift, outside the training ranges
+    for normalized in (False, True):
+        net = bc_train.UNetLstm(8, normalize_brightness=normalized)
+        net.load_state_dict(shipped)
+        net.eval()
+        path = tmp_path / ("model_%d.pt" % normalized)
+        torch.jit.script(net).save(str(path))  # what the C++ side loads
+        scripted = torch.jit.load(str(path))
+        with torch.no_grad():
+            a, b = scripted.encode(x), scripted.encode(dim)
+            change = float((a - b).norm() / a.norm())
+        if normalized:
+            assert change < 0.05
+            # the frame's mean RGB is scaled to the reference, the disparity left as it is
+            scale = bc_train.REFERENCE_BRIGHTNESS / (
+                float(dim[:, :3].mean(dim=(1, 2, 3))[0]) + bc_train.BRIGHTNESS_FLOOR)
+            assert 0.9 * bc_train.REFERENCE_BRIGHTNESS < float(dim[0, :3].mean()) * scale \
+                < 1.1 * bc_train.REFERENCE_BRIGHTNESS
+        else:
+            assert change > 0.2
+
+
+def test_hue_rotation_turns_colours_and_keeps_the_blue_shift_out_of_training(bc_train):
+    import colorsys
+
+    def hue_of(rgb):
+        return colorsys.rgb_to_hsv(*[float(v) for v in rgb.clamp(0.0, 1.0)])[0] * 360.0
+
+    def apart(a, b):
+        return abs((a - b + 180.0) % 360.0 - 180.0)
+
+    grey = torch.tensor([0.4, 0.4, 0.4])
+    assert torch.allclose(bc_train.hue_rotation(37.0) @ grey, grey, atol=1e-6)
+    red = torch.tensor([0.8, 0.16, 0.16])
+    assert apart(hue_of(bc_train.hue_rotation(30.0) @ red), 30.0) < 3.0
+    assert apart(hue_of(bc_train.hue_rotation(-60.0) @ red), 300.0) < 3.0
+    # the recorder's target hues (-25 to 130 deg, saturation 0.6-1, value 0.55-1) through the
+    # augmentation's whole hue range stay at least 45 deg from the blue_target shift (225 deg)
+    low, high = bc_train.AUGMENT_HUE
+    closest = 180.0
+    for hue in range(-25, 131, 5):
+        for saturation, value in ((0.6, 0.55), (1.0, 1.0), (0.8, 0.7)):
+            rgb = torch.tensor(colorsys.hsv_to_rgb((hue % 360) / 360.0, saturation, value))
+            for turn in torch.linspace(low, high, 22):
+                closest = min(closest, apart(hue_of(bc_train.hue_rotation(float(turn)) @ rgb),
+                                             225.0))
+    assert closest > 45.0
+    # and the augmentation draws that range: a red window's hue moves both ways by up to it
+    x = torch.cat([red[None, :, None, None].expand(4, 3, 60, 80),
+                   torch.full((4, 1, 60, 80), 0.5)], dim=1)
+    g = torch.Generator().manual_seed(4)
+    signed = [(hue_of(bc_train.augment(x, g)[0, :3].mean(dim=(1, 2))) + 180.0) % 360.0 - 180.0
+              for _ in range(200)]
+    assert min(signed) < 0.8 * low and max(signed) > 0.8 * high
+    assert min(signed) > low - 15.0 and max(signed) < high + 15.0

@@ -136,13 +136,13 @@ struct AppearanceRanges {
   AppearanceRange light_intensity{0.45, 1.5};    ///< WorldAppearance::light_intensity
   AppearanceRange ambient_intensity{0.45, 1.5};  ///< WorldAppearance::ambient_intensity
   /// [deg] the light's direction from straight down, toward an azimuth drawn in [0°, 360°).
-  AppearanceRange light_tilt{0.0, 45.0};
+  AppearanceRange light_tilt{0.0, 55.0};
   /// [deg] the target's hue; drawn in [min, max] and wrapped into [0°, 360°) (−25°: 335°).
   AppearanceRange target_hue{-25.0, 130.0};
   AppearanceRange target_saturation{0.6, 1.0};
   AppearanceRange target_value{0.55, 1.0};
   AppearanceRange target_radius{0.045, 0.09};  ///< [m]
-  AppearanceRange target_height{0.8, 1.25};    ///< [m]
+  AppearanceRange target_height{0.7, 1.25};    ///< [m]
   /// Shapes of the target, one drawn (equally likely). A box-shaped target is still told from
   /// the distractor box of similar colour by its height (0.3 m); a sphere (a ball at the
   /// target's height, on nothing) is left out.
