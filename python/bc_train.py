@@ -83,8 +83,8 @@ def load_frame(folder, rgb_path, disparity_path):
 AUGMENT_BRIGHTNESS = (0.45, 1.5)  # RGB gain, log-uniform
 AUGMENT_CHANNEL_GAIN = (0.85, 1.15)  # per colour channel, uniform
 # Hue rotation [deg] of the whole frame about the grey axis, uniform. The recorder's target hues
-# (-25 to 130 deg) then span -85 to 175 deg: the blue_target shift's 225 deg stays 50 deg away
-# from every target hue training sees, on either side.
+# (-25 to 130 deg) then span -85 to 175 deg: the blue_target shift's 225 deg stays at least 45 deg
+# (50 at full saturation) from every target hue training sees, on either side.
 AUGMENT_HUE = (-60.0, 45.0)
 AUGMENT_CONTRAST = (0.7, 1.3)  # about the window's mean, uniform
 AUGMENT_NOISE = 0.03  # largest std of the pixel noise on RGB in [0, 1]
