@@ -7,7 +7,7 @@ disparity/) and exports it as TorchScript for the C++ controller.
                                           [--lr 1e-3] [--sequence 5] [--chunk 16] [--width 8]
                                           [--seed 0] [--max-steps N] [--threads 2]
                                           [--init OUT/best.pth] [--augment]
-                                          [--normalize-brightness]
+                                          [--normalize-brightness] [--hue-blind]
 
 Pre-processing (the C++ side, walkgen/torch/velocity_network.hpp, does the same): the left RGB
 image and the WLS disparity (240 x 320) are averaged over 4 x 4 blocks to 60 x 80; RGB is scaled
@@ -16,7 +16,12 @@ RGBD. The processed frames of each folder are cached in DATA/bc_frames_60x80.npy
 --normalize-brightness the network itself (its `encode`, so the exported model and the C++ side
 alike) first scales each frame's RGB so that its mean is REFERENCE_BRIGHTNESS: a frame lit twice
 as brightly or four times as dimly gives the same features (up to quantisation, noise and
-clipping), while colours keep their ratios.
+clipping), while colours keep their ratios. With --hue-blind it then turns every pixel's colour
+to one hue (REFERENCE_HUE_RGB's, the default target's red-orange), keeping its grey level and how
+strongly coloured it is: the network sees how colourful a thing is, never which colour, so a
+target of any hue looks like the targets it was trained on (and it cannot tell two objects apart
+by hue alone: the distractor of the navigation rooms differs from the target by 15 degrees of hue
+and stays told apart by its shape, brightness and place).
 
 Samples are the thesis's sequences: the command after a frame is regressed from that frame and
 the `sequence` - 1 before it (5 frames, 2 s at the NMPC's 0.4 s ticks), each frame encoded by
@@ -50,6 +55,7 @@ import zlib
 import numpy as np
 import torch
 import torch.nn as nn
+import torch.nn.functional as F
 from PIL import Image
 
 MAX_COMMAND = (0.034, 0.075)  # v_x [m/s], omega_z [rad/s]: heicub_settings().max_command
@@ -87,6 +93,17 @@ AUGMENT_CHANNEL_GAIN = (0.85, 1.15)  # per colour channel, uniform
 # (50 at full saturation) from every target hue training sees, on either side.
 AUGMENT_HUE = (-60.0, 45.0)
 AUGMENT_CONTRAST = (0.7, 1.3)  # about the window's mean, uniform
+# Saturation: each pixel's colour moved toward its grey (the mean of its channels) by a factor
+# drawn uniformly, and with probability AUGMENT_GREY the window turned grey. A target is then
+# sometimes only weakly coloured or not at all, and the network has to find it by its shape and
+# its disparity too, not by its hue alone (no hue is added: the blue_target shift stays unseen).
+AUGMENT_SATURATION = (0.3, 1.0)
+AUGMENT_GREY = 0.15
+# Zoom [scale of the image about its centre], log-uniform, with the disparity values kept: a
+# camera of another focal length, so that things look larger or smaller than they are while their
+# disparity still says how far they are. The apparent size of a target stops telling its
+# distance (the recorder's targets differ in size too; the small_target shift is smaller still).
+AUGMENT_ZOOM = (0.8, 1.25)
 AUGMENT_NOISE = 0.03  # largest std of the pixel noise on RGB in [0, 1]
 AUGMENT_SHIFT = 2  # largest shift [px of the 60 x 80 frame] (camera pose)
 AUGMENT_DISPARITY_NOISE = 0.02  # std of the disparity noise (units of D = 32 px)
@@ -96,6 +113,18 @@ AUGMENT_DISPARITY_DROPOUT = 0.05  # largest share of disparity pixels lost (0: n
 # about 0.22 in [0, 1]), and what keeps a black frame finite.
 REFERENCE_BRIGHTNESS = 0.22
 BRIGHTNESS_FLOOR = 0.002
+# --hue-blind: the colour every pixel's hue is turned to (the default target's, NavigationScene's
+# SceneAppearance::target_rgb).
+REFERENCE_HUE_RGB = (0.9, 0.12, 0.04)
+
+
+def hue_direction(rgb):
+    """The unit vector from the grey of `rgb` (the mean of its channels) to `rgb`: its hue, as a
+    direction in the plane of colours with the same grey."""
+    grey = sum(rgb) / 3.0
+    c = [v - grey for v in rgb]
+    norm = math.sqrt(sum(v * v for v in c))
+    return [v / norm for v in c]
 
 
 def hue_rotation(degrees):
@@ -109,23 +138,47 @@ def hue_rotation(degrees):
     return c * torch.eye(3) + s * skew + (1.0 - c) * torch.full((3, 3), 1.0 / 3.0)
 
 
+def log_uniform(low, high, generator=None):
+    """A scalar tensor drawn log-uniformly in [low, high]."""
+    lo, hi = math.log(low), math.log(high)
+    return torch.exp(lo + (hi - lo) * torch.rand((), generator=generator))
+
+
+def zoom(rgb, disparity, scale):
+    """Frames (F x 3 x H x W RGB, F x 1 x H x W disparity) enlarged by `scale` about the image's
+    centre (below 1: made smaller, the border repeated), as by a camera of `scale` times the focal
+    length; RGB interpolated bilinearly, the disparity sampled at the nearest pixel and its values
+    kept (lost pixels stay 0, no new values appear)."""
+    if scale == 1.0:
+        return rgb, disparity
+    theta = torch.tensor([[1.0 / scale, 0.0, 0.0], [0.0, 1.0 / scale, 0.0]])
+    grid = F.affine_grid(theta.expand(rgb.shape[0], 2, 3), list(rgb.shape), align_corners=False)
+    return (F.grid_sample(rgb, grid, mode="bilinear", padding_mode="border", align_corners=False),
+            F.grid_sample(disparity, grid, mode="nearest", padding_mode="border",
+                          align_corners=False))
+
+
 def augment(window, generator=None):
     """A photometric and geometric variation of a window of frames (frames x 4 x H x W: RGB in
     [0, 1], then the scaled disparity), drawn with `generator` (torch.Generator, or torch's
-    global one): hue, brightness, colour balance, contrast and pixel noise on RGB, a shift of the
-    whole image, noise and lost pixels on the disparity. Returns a new tensor."""
+    global one): a zoom (the disparity values kept); hue, brightness, colour balance, contrast,
+    saturation and pixel noise on RGB; a shift of the whole image; noise and lost pixels on the
+    disparity. Returns a new tensor."""
     def uniform(low, high, shape=()):
         return low + (high - low) * torch.rand(shape, generator=generator)
 
     x = window.clone().float()
-    rgb, disparity = x[:, :3], x[:, 3:]
+    rgb, disparity = zoom(x[:, :3], x[:, 3:], float(log_uniform(*AUGMENT_ZOOM, generator)))
     turn = hue_rotation(float(uniform(*AUGMENT_HUE)))
     rgb = torch.einsum("ij,fjhw->fihw", turn, rgb).clamp(0.0, 1.0)
-    lo, hi = math.log(AUGMENT_BRIGHTNESS[0]), math.log(AUGMENT_BRIGHTNESS[1])
-    gain = torch.exp(uniform(lo, hi)) * uniform(*AUGMENT_CHANNEL_GAIN, (1, 3, 1, 1))
+    gain = log_uniform(*AUGMENT_BRIGHTNESS, generator) * uniform(*AUGMENT_CHANNEL_GAIN,
+                                                                 (1, 3, 1, 1))
     rgb = rgb * gain
     mean = rgb.mean(dim=(1, 2, 3), keepdim=True)
     rgb = (rgb - mean) * uniform(*AUGMENT_CONTRAST) + mean
+    saturation = 0.0 if float(uniform(0.0, 1.0)) < AUGMENT_GREY else uniform(*AUGMENT_SATURATION)
+    grey = rgb.mean(dim=1, keepdim=True)
+    rgb = grey + saturation * (rgb - grey)
     rgb = rgb + uniform(0.0, AUGMENT_NOISE) * torch.randn(rgb.shape, generator=generator)
     disparity = disparity + AUGMENT_DISPARITY_NOISE * torch.randn(disparity.shape,
                                                                    generator=generator)
@@ -248,9 +301,12 @@ class UNetLstm(nn.Module):
     """Figure 11.2: a U-Net (two poolings, skip connections by concatenation) per frame, a
     fully connected layer, an LSTM over the sequence, and a tanh regression of (v_x, omega_z)."""
 
-    def __init__(self, width=16, hidden=64, sequence=5, normalize_brightness=False):
+    def __init__(self, width=16, hidden=64, sequence=5, normalize_brightness=False,
+                 hue_blind=False):
         super().__init__()
         self.normalize_brightness = normalize_brightness
+        self.hue_blind = hue_blind
+        self.reference_hue = hue_direction(REFERENCE_HUE_RGB)  # List[float] for TorchScript
         self.reference_brightness = REFERENCE_BRIGHTNESS  # attributes: TorchScript keeps them
         self.brightness_floor = BRIGHTNESS_FLOOR
         w = width
@@ -273,6 +329,12 @@ class UNetLstm(nn.Module):
             mean = rgb.mean(dim=(1, 2, 3), keepdim=True)
             scale = self.reference_brightness / (mean + self.brightness_floor)
             x = torch.cat([rgb * scale, x[:, 3:]], dim=1)
+        if self.hue_blind:
+            rgb = x[:, :3]
+            grey = rgb.mean(dim=1, keepdim=True)
+            chroma = torch.sqrt(((rgb - grey) ** 2).sum(dim=1, keepdim=True) + 1e-12)
+            hue = torch.tensor(self.reference_hue, dtype=x.dtype, device=x.device).view(1, 3, 1, 1)
+            x = torch.cat([grey + chroma * hue, x[:, 3:]], dim=1)
         d1 = self.down1(x)
         d2 = self.down2(self.pool(d1))
         b = self.bottom(self.pool(d2))
@@ -350,8 +412,9 @@ def main():
     parser.add_argument("--max-steps", type=int, default=0, help="stop after N optimiser steps")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--augment", action="store_true",
-                        help="vary the training windows' brightness, colour balance, contrast, "
-                        "noise, position and disparity (augment(); validation stays as recorded)")
+                        help="vary the training windows' zoom, hue, brightness, colour balance, "
+                        "contrast, saturation, noise, position and disparity (augment(); "
+                        "validation stays as recorded)")
     parser.add_argument("--init", help="start from these weights (OUT/best.pth of an earlier "
                         "run, e.g. to fine-tune after a DAgger round); with --epochs 0 only "
                         "evaluate and export them")
@@ -360,6 +423,11 @@ def main():
                         "exported model does it too): features independent of the light's "
                         "intensity; give it again when fine-tuning such a model with --init"
                         % REFERENCE_BRIGHTNESS)
+    parser.add_argument("--hue-blind", action="store_true",
+                        help="turn every pixel's colour to one hue inside the network (the "
+                        "exported model does it too), keeping its grey level and strength: "
+                        "features independent of the target's hue; give it again when "
+                        "fine-tuning such a model with --init")
     args = parser.parse_args()
     if args.epochs < (0 if args.init else 1) or args.batch < 1 or args.sequence < 1 \
             or not args.lr > 0:
@@ -403,7 +471,7 @@ def main():
     val_loader = torch.utils.data.DataLoader(val, batch_size=8)
 
     model = UNetLstm(args.width, sequence=args.sequence,
-                     normalize_brightness=args.normalize_brightness)
+                     normalize_brightness=args.normalize_brightness, hue_blind=args.hue_blind)
     if args.init:
         try:
             model.load_state_dict(torch.load(args.init))

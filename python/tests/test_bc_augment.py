@@ -24,6 +24,20 @@ def window(frames=6):
     return torch.cat([rgb, disparity]).expand(frames, 4, 60, 80).clone()
 
 
+def feature_change(bc_train, weights, path, a, b, **options):
+    """How much the features of frames `a` and `b` differ (relative), through the network of
+    `options` with `weights`, exported to TorchScript at `path` and loaded back as the C++ side
+    loads it."""
+    net = bc_train.UNetLstm(8, **options)
+    net.load_state_dict(weights)
+    net.eval()
+    torch.jit.script(net).save(str(path))
+    scripted = torch.jit.load(str(path))
+    with torch.no_grad():
+        fa, fb = scripted.encode(a), scripted.encode(b)
+    return float((fa - fb).norm() / fa.norm())
+
+
 def test_augment_stays_in_range_and_keeps_the_input(bc_train):
     x = window()
     before = x.clone()
@@ -75,15 +89,8 @@ def test_normalized_brightness_makes_the_features_independent_of_the_light(bc_tr
     dim = x.clone()
     dim[:, :3] *= 0.25  # bc_evaluate's dim shift, outside the training ranges
     for normalized in (False, True):
-        net = bc_train.UNetLstm(8, normalize_brightness=normalized)
-        net.load_state_dict(shipped)
-        net.eval()
-        path = tmp_path / ("model_%d.pt" % normalized)
-        torch.jit.script(net).save(str(path))  # what the C++ side loads
-        scripted = torch.jit.load(str(path))
-        with torch.no_grad():
-            a, b = scripted.encode(x), scripted.encode(dim)
-            change = float((a - b).norm() / a.norm())
+        change = feature_change(bc_train, shipped, tmp_path / ("model_%d.pt" % normalized), x, dim,
+                                normalize_brightness=normalized)
         if normalized:
             assert change < 0.05
             # the frame's mean RGB is scaled to the reference, the disparity left as it is
@@ -124,7 +131,82 @@ def test_hue_rotation_turns_colours_and_keeps_the_blue_shift_out_of_training(bc_
     x = torch.cat([red[None, :, None, None].expand(4, 3, 60, 80),
                    torch.full((4, 1, 60, 80), 0.5)], dim=1)
     g = torch.Generator().manual_seed(4)
-    signed = [(hue_of(bc_train.augment(x, g)[0, :3].mean(dim=(1, 2))) + 180.0) % 360.0 - 180.0
-              for _ in range(200)]
+    means = [bc_train.augment(x, g)[0, :3].mean(dim=(1, 2)) for _ in range(200)]
+    # (the windows the saturation draw turned grey have no hue to measure)
+    signed = [(hue_of(m) + 180.0) % 360.0 - 180.0 for m in means if float(m.max() - m.min()) > 0.05]
     assert min(signed) < 0.8 * low and max(signed) > 0.8 * high
     assert min(signed) > low - 15.0 and max(signed) < high + 15.0
+
+
+def test_zoom_scales_the_image_and_keeps_the_disparity_values(bc_train):
+    # a bright square 20 px wide in the middle, its disparity 0.8 on a background of 0.2
+    x = torch.zeros(2, 4, 60, 80)
+    x[:, :3, 20:40, 30:50] = 1.0
+    x[:, 3] = 0.2
+    x[:, 3, 20:40, 30:50] = 0.8
+    for scale in (0.8, 1.25):
+        rgb, disparity = bc_train.zoom(x[:, :3], x[:, 3:], scale)
+        width = float((rgb[0, 0, 30] > 0.5).sum())
+        assert abs(width - 20.0 * scale) <= 1.0
+        # the disparity is sampled, not rescaled: the object is as far as before
+        assert all(min(abs(v - 0.2), abs(v - 0.8)) < 1e-6
+                   for v in torch.unique(disparity).tolist())
+        assert abs(float((disparity[0, 0, 30] > 0.5).sum()) - 20.0 * scale) <= 1.0
+    rgb, disparity = bc_train.zoom(x[:, :3], x[:, 3:], 1.0)
+    assert torch.equal(rgb, x[:, :3]) and torch.equal(disparity, x[:, 3:])
+    # augment() draws the zoom over its whole range, one per window
+    low, high = bc_train.AUGMENT_ZOOM
+    g = torch.Generator().manual_seed(6)
+    widths = []
+    for _ in range(300):
+        d = bc_train.augment(x, g)[:, 3] > 0.5
+        # the frames share the zoom (they differ by the disparity's noise and lost pixels)
+        assert float((d[0] ^ d[1]).float().sum()) < 0.15 * float(d[0].float().sum())
+        widths.append(float(d.float().sum(dim=(1, 2)).max()) ** 0.5)  # the square's side
+    assert min(widths) <= 20.0 * low + 2.0 and max(widths) >= 20.0 * high - 2.0
+    assert min(widths) >= 20.0 * low - 3.0 and max(widths) <= 20.0 * high + 3.0
+
+
+def test_saturation_weakens_the_colour_and_sometimes_removes_it(bc_train):
+    red = torch.tensor([0.8, 0.16, 0.16])
+    x = torch.cat([red[None, :, None, None].expand(3, 3, 60, 80),
+                   torch.full((3, 1, 60, 80), 0.5)], dim=1)
+    g = torch.Generator().manual_seed(8)
+    chroma = []
+    for _ in range(400):
+        mean = bc_train.augment(x, g)[0, :3].mean(dim=(1, 2))
+        chroma.append(float(mean.max() - mean.min()) / float(red.max() - red.min()))
+    chroma = torch.tensor(chroma)
+    grey = float((chroma < 0.05).float().mean())  # pixel noise only: the window turned grey
+    assert abs(grey - bc_train.AUGMENT_GREY) < 0.06
+    coloured = chroma[chroma >= 0.05]
+    low, high = bc_train.AUGMENT_SATURATION
+    # the colour's strength spans the saturation range (times the brightness and contrast draws)
+    assert float(coloured.min()) < 1.5 * low and float(coloured.max()) > 0.9 * high
+
+
+def test_hue_blind_features_do_not_depend_on_the_targets_hue(bc_train, tmp_path, source_dir):
+    shipped = torch.jit.load(str(source_dir / "models" / "bc_final.pt")).state_dict()
+    x = window(3)
+    target = torch.tensor(bc_train.REFERENCE_HUE_RGB)
+    x[:, :3, 20:45, 35:45] = target[None, :, None, None]  # the default red-orange target
+    blue = x.clone()  # the same target turned to the blue_target shift's hue (225 deg)
+    patch = blue[:, :3, 20:45, 35:45]
+    blue[:, :3, 20:45, 35:45] = torch.einsum("ij,fjhw->fihw", bc_train.hue_rotation(-140.0),
+                                             patch)
+    import colorsys
+    hue = colorsys.rgb_to_hsv(*[float(v) for v in blue[0, :3, 30, 40]])[0] * 360.0
+    assert 215.0 < hue < 235.0
+    for blind in (False, True):
+        change = feature_change(bc_train, shipped, tmp_path / ("model_%d.pt" % blind), x, blue,
+                                normalize_brightness=True, hue_blind=blind)
+        if blind:
+            assert change < 1e-5
+        else:
+            assert change > 0.05
+    # the reference hue is left as it is, a grey pixel stays grey
+    net = bc_train.UNetLstm(8, hue_blind=True)
+    reference = torch.tensor(bc_train.hue_direction(bc_train.REFERENCE_HUE_RGB))
+    grey = target.mean()
+    assert torch.allclose(grey + (target - grey).norm() * reference, target, atol=1e-6)
+    assert torch.allclose(torch.tensor(net.reference_hue), reference)

@@ -13,9 +13,10 @@ python=/usr/bin/python3
 "$python" -c "import torch, PIL, matplotlib" || { echo "bc_pipeline: $python lacks torch, PIL or matplotlib (scripts/setup.sh installs python3-torch, python3-matplotlib)"; exit 1; }
 
 "$record" --out "$out/data" --episodes 2 --tasks straight --seed 77
-# (with the brightness normalisation inside the exported model, which the C++ side must
-# reproduce: test_velocity_network compares it with the reference below)
-"$python" "$train" "$out/data" "$out/model" --epochs 3 --width 4 --threads 2 --normalize-brightness
+# (with the brightness normalisation and the hue-blind colours inside the exported model, which
+# the C++ side must reproduce: test_velocity_network compares it with the reference below)
+"$python" "$train" "$out/data" "$out/model" --epochs 3 --width 4 --threads 2 --normalize-brightness \
+  --hue-blind
 # The reference for test_velocity_network: the Python model's commands on the first 12 frames of
 # the first episode, with bc_train.py's own pre-processing and 5-frame windows.
 "$python" - "$train" "$out" <<'PY'
