@@ -105,7 +105,13 @@ AUGMENT_GREY = 0.15
 # distance (the recorder's targets differ in size too; the small_target shift is smaller still).
 AUGMENT_ZOOM = (0.8, 1.25)
 AUGMENT_NOISE = 0.03  # largest std of the pixel noise on RGB in [0, 1]
-AUGMENT_SHIFT = 2  # largest shift [px of the 60 x 80 frame] (camera pose)
+AUGMENT_SHIFT = 2  # largest sideways shift [px of the 60 x 80 frame] (camera pose)
+# Largest vertical shift [px]: the camera pitched by up to 12 deg either way (the 60 rows span the
+# 45 deg field of view). Things then appear higher or lower in the frame than the recorder's
+# camera shows them, and a target near the robot may slide out of the frame's bottom edge while
+# the expert keeps walking to it (what a camera mounted higher or a target lower than training's
+# looks like).
+AUGMENT_PITCH = 16
 AUGMENT_DISPARITY_NOISE = 0.02  # std of the disparity noise (units of D = 32 px)
 AUGMENT_DISPARITY_DROPOUT = 0.05  # largest share of disparity pixels lost (0: no match)
 
@@ -162,8 +168,8 @@ def augment(window, generator=None):
     """A photometric and geometric variation of a window of frames (frames x 4 x H x W: RGB in
     [0, 1], then the scaled disparity), drawn with `generator` (torch.Generator, or torch's
     global one): a zoom (the disparity values kept); hue, brightness, colour balance, contrast,
-    saturation and pixel noise on RGB; a shift of the whole image; noise and lost pixels on the
-    disparity. Returns a new tensor."""
+    saturation and pixel noise on RGB; a shift of the whole image (the camera's pitch and pose);
+    noise and lost pixels on the disparity. Returns a new tensor."""
     def uniform(low, high, shape=()):
         return low + (high - low) * torch.rand(shape, generator=generator)
 
@@ -186,8 +192,8 @@ def augment(window, generator=None):
                                                                       AUGMENT_DISPARITY_DROPOUT)
     disparity = torch.where(lost, torch.zeros_like(disparity), disparity.clamp(min=0.0))
     x = torch.cat([rgb.clamp(0.0, 1.0), disparity], dim=1)
-    dy, dx = (int(v) for v in torch.randint(-AUGMENT_SHIFT, AUGMENT_SHIFT + 1, (2,),
-                                            generator=generator))
+    dy = int(torch.randint(-AUGMENT_PITCH, AUGMENT_PITCH + 1, (), generator=generator))
+    dx = int(torch.randint(-AUGMENT_SHIFT, AUGMENT_SHIFT + 1, (), generator=generator))
     if dy or dx:  # shifted, the uncovered border repeats the edge
         x = torch.roll(x, shifts=(dy, dx), dims=(2, 3))
         if dy > 0:
@@ -239,9 +245,16 @@ def load_frames(folder, frames):
             where = {n: i for i, n in enumerate(cached)}
             return [np.asarray(data[where[n]], dtype=np.float32) for n in wanted]
     out = [load_frame(folder, f[2], f[3]) for f in frames]
-    np.save(cache, np.stack(out).astype(np.float16))
-    with open(names, "w") as f:
+    # written atomically (each to a temporary name, then renamed), the names last: a run
+    # interrupted here leaves the old cache or none, never names that do not match the frames
+    if os.path.exists(names):
+        os.remove(names)
+    with open(cache + ".tmp", "wb") as f:
+        np.save(f, np.stack(out).astype(np.float16))
+    os.replace(cache + ".tmp", cache)
+    with open(names + ".tmp", "w") as f:
         f.write("\n".join(wanted) + "\n")
+    os.replace(names + ".tmp", names)
     return out
 
 

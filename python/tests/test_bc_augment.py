@@ -210,3 +210,22 @@ def test_hue_blind_features_do_not_depend_on_the_targets_hue(bc_train, tmp_path,
     grey = target.mean()
     assert torch.allclose(grey + (target - grey).norm() * reference, target, atol=1e-6)
     assert torch.allclose(torch.tensor(net.reference_hue), reference)
+
+
+def test_the_camera_pitch_moves_the_image_up_and_down_by_up_to_its_range(bc_train):
+    # a band of near disparity across the middle rows: the zoom keeps its centre, the pitch moves it
+    x = torch.full((2, 4, 60, 80), 0.3)
+    x[:, 3] = 0.2
+    x[:, 3, 28:32] = 0.8
+    g = torch.Generator().manual_seed(12)
+    offsets = []
+    for _ in range(300):
+        d = bc_train.augment(x, g)[0, 3, :, 40] > 0.5
+        rows = torch.nonzero(d).flatten().float()
+        offsets.append(float(rows.mean()) - 29.5)
+    offsets = torch.tensor(offsets)
+    pitch = bc_train.AUGMENT_PITCH
+    assert float(offsets.abs().max()) <= pitch + 1.0
+    assert float(offsets.min()) < -pitch + 2.0 and float(offsets.max()) > pitch - 2.0
+    # 60 rows span the chest camera's 45 deg: the pitch stays a jitter of some degrees
+    assert 5.0 <= pitch * 45.0 / 60.0 <= 12.0
