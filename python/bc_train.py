@@ -104,6 +104,14 @@ AUGMENT_GREY = 0.15
 # disparity still says how far they are. The apparent size of a target stops telling its
 # distance (the recorder's targets differ in size too; the small_target shift is smaller still).
 AUGMENT_ZOOM = (0.8, 1.25)
+# Uneven light: the brightness ramps across the frame in a random direction by a factor of up to
+# exp(+-AUGMENT_SHADING) at its edges, and with probability AUGMENT_SHADOW_P a band across the frame
+# (random direction, place and width) is darkened to AUGMENT_SHADOW of its brightness (a shadow
+# cast by a light from low on one side; training's lights come from within 55 deg of straight
+# down and cast short shadows).
+AUGMENT_SHADING = 0.5
+AUGMENT_SHADOW_P = 0.5
+AUGMENT_SHADOW = (0.35, 0.8)
 AUGMENT_NOISE = 0.03  # largest std of the pixel noise on RGB in [0, 1]
 AUGMENT_SHIFT = 2  # largest sideways shift [px of the 60 x 80 frame] (camera pose)
 # Largest vertical shift [px]: the camera pitched by up to 12 deg either way (the 60 rows span the
@@ -164,11 +172,34 @@ def zoom(rgb, disparity, scale):
                           align_corners=False))
 
 
+def uneven_light(shape, generator=None):
+    """A brightness factor (1 x 1 x H x W) for frames of `shape`: a ramp across the frame in a
+    random direction (exp of up to +-AUGMENT_SHADING at the edges) times, with probability
+    AUGMENT_SHADOW_P, a straight band of shadow (AUGMENT_SHADOW of the light) of random direction,
+    place and width."""
+    def uniform(low, high):
+        return low + (high - low) * float(torch.rand((), generator=generator))
+
+    h, w = shape[-2], shape[-1]
+    v = torch.linspace(-1.0, 1.0, h)[:, None].expand(h, w)
+    u = torch.linspace(-1.0, 1.0, w)[None, :].expand(h, w)
+    a = uniform(0.0, 2.0 * math.pi)
+    along = math.cos(a) * u + math.sin(a) * v  # in [-sqrt 2, sqrt 2]
+    factor = torch.exp(uniform(0.0, AUGMENT_SHADING) * along / math.sqrt(2.0))
+    if uniform(0.0, 1.0) < AUGMENT_SHADOW_P:
+        b = uniform(0.0, 2.0 * math.pi)
+        across = math.cos(b) * u + math.sin(b) * v
+        centre, half_width = uniform(-1.0, 1.0), uniform(0.1, 0.5)
+        band = (across - centre).abs() < half_width
+        factor = torch.where(band, factor * uniform(*AUGMENT_SHADOW), factor)
+    return factor[None, None]
+
+
 def augment(window, generator=None):
     """A photometric and geometric variation of a window of frames (frames x 4 x H x W: RGB in
     [0, 1], then the scaled disparity), drawn with `generator` (torch.Generator, or torch's
-    global one): a zoom (the disparity values kept); hue, brightness, colour balance, contrast,
-    saturation and pixel noise on RGB; a shift of the whole image (the camera's pitch and pose);
+    global one): a zoom (the disparity values kept); hue, brightness, uneven light and shadow,
+    colour balance, contrast, saturation and pixel noise on RGB; a shift of the whole image (the camera's pitch and pose);
     noise and lost pixels on the disparity. Returns a new tensor."""
     def uniform(low, high, shape=()):
         return low + (high - low) * torch.rand(shape, generator=generator)
@@ -179,7 +210,7 @@ def augment(window, generator=None):
     rgb = torch.einsum("ij,fjhw->fihw", turn, rgb).clamp(0.0, 1.0)
     gain = log_uniform(*AUGMENT_BRIGHTNESS, generator) * uniform(*AUGMENT_CHANNEL_GAIN,
                                                                  (1, 3, 1, 1))
-    rgb = rgb * gain
+    rgb = rgb * gain * uneven_light(rgb.shape, generator)
     mean = rgb.mean(dim=(1, 2, 3), keepdim=True)
     rgb = (rgb - mean) * uniform(*AUGMENT_CONTRAST) + mean
     saturation = 0.0 if float(uniform(0.0, 1.0)) < AUGMENT_GREY else uniform(*AUGMENT_SATURATION)

@@ -1,5 +1,6 @@
 """bc_train.py's image augmentation (issue 27): what it varies, by how much, and what it keeps."""
 import importlib.util
+import math
 
 import pytest
 
@@ -229,3 +230,21 @@ def test_the_camera_pitch_moves_the_image_up_and_down_by_up_to_its_range(bc_trai
     assert float(offsets.min()) < -pitch + 2.0 and float(offsets.max()) > pitch - 2.0
     # 60 rows span the chest camera's 45 deg: the pitch stays a jitter of some degrees
     assert 5.0 <= pitch * 45.0 / 60.0 <= 12.0
+
+
+def test_uneven_light_ramps_and_casts_shadows_within_its_ranges(bc_train):
+    g = torch.Generator().manual_seed(14)
+    ramps, shadows = [], 0
+    for _ in range(300):
+        f = bc_train.uneven_light((4, 3, 60, 80), g)[0, 0]
+        assert f.shape == (60, 80) and torch.isfinite(f).all()
+        low, high = bc_train.AUGMENT_SHADOW
+        assert float(f.min()) >= low * math.exp(-bc_train.AUGMENT_SHADING) - 1e-6
+        assert float(f.max()) <= math.exp(bc_train.AUGMENT_SHADING) + 1e-6
+        ramps.append(float(f.max() / f.min()))
+        # a shadow: a jump between neighbouring pixels far larger than the smooth ramp's
+        jumps = torch.cat([(f[1:] / f[:-1]).flatten(), (f[:, 1:] / f[:, :-1]).flatten()])
+        if float((jumps - 1.0).abs().max()) > 0.9 * (1.0 / high - 1.0):
+            shadows += 1
+    assert max(ramps) > math.exp(0.8 * bc_train.AUGMENT_SHADING)
+    assert abs(shadows / 300.0 - bc_train.AUGMENT_SHADOW_P) < 0.1

@@ -142,7 +142,7 @@ struct AppearanceRanges {
   AppearanceRange target_saturation{0.6, 1.0};
   AppearanceRange target_value{0.55, 1.0};
   AppearanceRange target_radius{0.045, 0.09};  ///< [m]
-  AppearanceRange target_height{0.7, 1.25};    ///< [m]
+  AppearanceRange target_height{0.65, 1.25};   ///< [m]
   /// Shapes of the target, one drawn (equally likely). A box-shaped target is still told from
   /// the distractor box of similar colour by its height (0.3 m); a sphere (a ball at the
   /// target's height, on nothing) is left out.
