@@ -152,10 +152,14 @@ def hue_rotation(degrees):
     return c * torch.eye(3) + s * skew + (1.0 - c) * torch.full((3, 3), 1.0 / 3.0)
 
 
+def uniform(low, high, generator=None, shape=()):
+    """A tensor of `shape` drawn uniformly in [low, high] with `generator`."""
+    return low + (high - low) * torch.rand(shape, generator=generator)
+
+
 def log_uniform(low, high, generator=None):
     """A scalar tensor drawn log-uniformly in [low, high]."""
-    lo, hi = math.log(low), math.log(high)
-    return torch.exp(lo + (hi - lo) * torch.rand((), generator=generator))
+    return torch.exp(uniform(math.log(low), math.log(high), generator))
 
 
 def zoom(rgb, disparity, scale):
@@ -177,21 +181,21 @@ def uneven_light(shape, generator=None):
     random direction (exp of up to +-AUGMENT_SHADING at the edges) times, with probability
     AUGMENT_SHADOW_P, a straight band of shadow (AUGMENT_SHADOW of the light) of random direction,
     place and width."""
-    def uniform(low, high):
-        return low + (high - low) * float(torch.rand((), generator=generator))
+    def draw(low, high):
+        return float(uniform(low, high, generator))
 
     h, w = shape[-2], shape[-1]
     v = torch.linspace(-1.0, 1.0, h)[:, None].expand(h, w)
     u = torch.linspace(-1.0, 1.0, w)[None, :].expand(h, w)
-    a = uniform(0.0, 2.0 * math.pi)
+    a = draw(0.0, 2.0 * math.pi)
     along = math.cos(a) * u + math.sin(a) * v  # in [-sqrt 2, sqrt 2]
-    factor = torch.exp(uniform(0.0, AUGMENT_SHADING) * along / math.sqrt(2.0))
-    if uniform(0.0, 1.0) < AUGMENT_SHADOW_P:
-        b = uniform(0.0, 2.0 * math.pi)
+    factor = torch.exp(draw(0.0, AUGMENT_SHADING) * along / math.sqrt(2.0))
+    if draw(0.0, 1.0) < AUGMENT_SHADOW_P:
+        b = draw(0.0, 2.0 * math.pi)
         across = math.cos(b) * u + math.sin(b) * v
-        centre, half_width = uniform(-1.0, 1.0), uniform(0.1, 0.5)
+        centre, half_width = draw(-1.0, 1.0), draw(0.1, 0.5)
         band = (across - centre).abs() < half_width
-        factor = torch.where(band, factor * uniform(*AUGMENT_SHADOW), factor)
+        factor = torch.where(band, factor * draw(*AUGMENT_SHADOW), factor)
     return factor[None, None]
 
 
@@ -199,28 +203,26 @@ def augment(window, generator=None):
     """A photometric and geometric variation of a window of frames (frames x 4 x H x W: RGB in
     [0, 1], then the scaled disparity), drawn with `generator` (torch.Generator, or torch's
     global one): a zoom (the disparity values kept); hue, brightness, uneven light and shadow,
-    colour balance, contrast, saturation and pixel noise on RGB; a shift of the whole image (the camera's pitch and pose);
-    noise and lost pixels on the disparity. Returns a new tensor."""
-    def uniform(low, high, shape=()):
-        return low + (high - low) * torch.rand(shape, generator=generator)
+    colour balance, contrast, saturation and pixel noise on RGB; a shift of the whole image (the
+    camera's pitch and pose); noise and lost pixels on the disparity. Returns a new tensor."""
+    def draw(low, high, shape=()):
+        return uniform(low, high, generator, shape)
 
     x = window.clone().float()
     rgb, disparity = zoom(x[:, :3], x[:, 3:], float(log_uniform(*AUGMENT_ZOOM, generator)))
-    turn = hue_rotation(float(uniform(*AUGMENT_HUE)))
+    turn = hue_rotation(float(draw(*AUGMENT_HUE)))
     rgb = torch.einsum("ij,fjhw->fihw", turn, rgb).clamp(0.0, 1.0)
-    gain = log_uniform(*AUGMENT_BRIGHTNESS, generator) * uniform(*AUGMENT_CHANNEL_GAIN,
-                                                                 (1, 3, 1, 1))
+    gain = log_uniform(*AUGMENT_BRIGHTNESS, generator) * draw(*AUGMENT_CHANNEL_GAIN, (1, 3, 1, 1))
     rgb = rgb * gain * uneven_light(rgb.shape, generator)
     mean = rgb.mean(dim=(1, 2, 3), keepdim=True)
-    rgb = (rgb - mean) * uniform(*AUGMENT_CONTRAST) + mean
-    saturation = 0.0 if float(uniform(0.0, 1.0)) < AUGMENT_GREY else uniform(*AUGMENT_SATURATION)
+    rgb = (rgb - mean) * draw(*AUGMENT_CONTRAST) + mean
+    saturation = 0.0 if float(draw(0.0, 1.0)) < AUGMENT_GREY else draw(*AUGMENT_SATURATION)
     grey = rgb.mean(dim=1, keepdim=True)
     rgb = grey + saturation * (rgb - grey)
-    rgb = rgb + uniform(0.0, AUGMENT_NOISE) * torch.randn(rgb.shape, generator=generator)
+    rgb = rgb + draw(0.0, AUGMENT_NOISE) * torch.randn(rgb.shape, generator=generator)
     disparity = disparity + AUGMENT_DISPARITY_NOISE * torch.randn(disparity.shape,
                                                                    generator=generator)
-    lost = torch.rand(disparity.shape, generator=generator) < uniform(0.0,
-                                                                      AUGMENT_DISPARITY_DROPOUT)
+    lost = torch.rand(disparity.shape, generator=generator) < draw(0.0, AUGMENT_DISPARITY_DROPOUT)
     disparity = torch.where(lost, torch.zeros_like(disparity), disparity.clamp(min=0.0))
     x = torch.cat([rgb.clamp(0.0, 1.0), disparity], dim=1)
     dy = int(torch.randint(-AUGMENT_PITCH, AUGMENT_PITCH + 1, (), generator=generator))
@@ -456,9 +458,9 @@ def main():
     parser.add_argument("--max-steps", type=int, default=0, help="stop after N optimiser steps")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--augment", action="store_true",
-                        help="vary the training windows' zoom, hue, brightness, colour balance, "
-                        "contrast, saturation, noise, position and disparity (augment(); "
-                        "validation stays as recorded)")
+                        help="vary the training windows' zoom, hue, brightness, uneven light and "
+                        "shadow, colour balance, contrast, saturation, noise, position, camera "
+                        "pitch and disparity (augment(); validation stays as recorded)")
     parser.add_argument("--init", help="start from these weights (OUT/best.pth of an earlier "
                         "run, e.g. to fine-tune after a DAgger round); with --epochs 0 only "
                         "evaluate and export them")
