@@ -5,14 +5,17 @@
 // environmental scan (the target behind the robot). walkgen::go_to_target() steers in place of
 // the thesis's keyboard user.
 //
-//   walking_simulation [TASK...] [--out DIR] [--scale S] [--video] [--video-width W]
-//                      [--video-height H] [--fps F] [--no-plot]
+//   walking_simulation [TASK...] [--robot NAME|PATH] [--out DIR] [--scale S] [--video]
+//                      [--video-width W] [--video-height H] [--fps F] [--no-plot]
 //     TASK            straight curved obstacle scan (default: all four)
+//     --robot R       walkgen_humanoid (default) or unitree_g1 (models/NAME/robot.yaml), or the
+//                     path of a robot description file (docs/robots.md)
 //     --out DIR       output folder, created if missing (default: the working directory)
 //     --scale S       distances times S, in (0, 5]: shorter (S < 1) or longer tasks
 //     --video         film every task from a camera that follows the robot, one frame per NMPC
-//                     tick (0.4 s walked): <task>.mp4 (H.264, the frames piped into ffmpeg when
-//                     it is on the PATH) and <task>_frames.png, six frames side by side
+//                     tick (0.4 s walked by walkgen_humanoid): <task>.mp4 (H.264, the frames piped
+//                     into ffmpeg when it is on the PATH) and <task>_frames.png, six frames side by
+//                     side
 //     --video-width W, --video-height H   frame size [px] (default 960 x 540; at most the
 //                     robot's offscreen view, MujocoRobotSettings::view_width x view_height:
 //                     a larger frame is shrunk to it, with a line that says so)
@@ -49,6 +52,7 @@
 
 #include "common/cli.hpp"
 #include "walkgen/simulation/simulated_tasks.hpp"
+#include "walkgen/yaml/robot_description_loader.hpp"
 #ifdef WALKGEN_SIMULATION_OPENCV  // examples/CMakeLists.txt: with walkgen::opencv
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -57,7 +61,6 @@
 
 namespace {
 
-constexpr double kTick = 0.4;  ///< one frame per NMPC tick [s] (heicub_settings().t)
 constexpr int kStripFrames = 6;
 /// The camera follows the true CoM from behind on the right, looking down enough (25° with
 /// MuJoCo's vertical field of view of 45°) that the frame holds floor up to its top edge: above
@@ -285,13 +288,14 @@ CLI::Validator even() {
 
 int main(int argc, char** argv) {
   std::string out_dir = ".";
+  std::string robot_name = "walkgen_humanoid";
   double scale = 1.0;
   bool video = false, no_plot = false;
   VideoSettings film;
   std::vector<std::string> names;
   CLI::App app{
-      "The humanoid walks the test tasks of thesis §9.2 in MuJoCo, closed loop (figure "
-      "6.1): CSV, plots, videos",
+      "A robot walks the test tasks of thesis §9.2 in MuJoCo, closed loop (figure 6.1): CSV, "
+      "plots, videos",
       "walking_simulation"};
   walkgen_examples::cli_defaults(app);
   app.add_option("TASK", names,
@@ -299,6 +303,9 @@ int main(int argc, char** argv) {
                  "the way), scan (target behind); default: all four")
       ->check(CLI::IsMember({"straight", "curved", "obstacle", "scan"}))
       ->default_str("");
+  app.add_option("--robot", robot_name,
+                 "the robot: walkgen_humanoid or unitree_g1 (models/NAME/robot.yaml), or the "
+                 "path of a robot description file (docs/robots.md)");
   app.add_option("--out", out_dir,
                  "output folder for <task>.csv, .png, .mp4, <task>_frames.png and "
                  "simulation_summary.csv (created if missing)");
@@ -323,13 +330,21 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(64, 1080))
       ->check(even());
   app.add_option("--fps", film.fps,
-                 "frame rate of <task>.mp4 [fps]; a frame is 0.4 s walked, so 25 fps plays at 10x "
+                 "frame rate of <task>.mp4 [fps]; a frame is one NMPC tick (walkgen_humanoid: 0.4 "
+                 "s), so 25 fps plays at 10x "
                  "real time")
       ->check(CLI::Range(1.0, 60.0));
   app.add_flag("--no-plot", no_plot,
                "CSV only, no <task>.png (plotting needs /usr/bin/python3 with matplotlib)");
   WALKGEN_CLI_PARSE(app, argc, argv);
 
+  walkgen::RobotDescription robot;
+  try {
+    robot = walkgen::find_robot_description(robot_name);
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "walking_simulation: --robot: %s\n", e.what());
+    return 2;
+  }
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir)) {
@@ -339,7 +354,7 @@ int main(int argc, char** argv) {
   }
   // The robot's offscreen buffer bounds the frame size (MujocoRobotSettings::view_width and
   // view_height, which walkgen::task_robot_settings sets for every task).
-  const walkgen::MujocoRobotSettings view = walkgen::task_robot_settings({});
+  const walkgen::MujocoRobotSettings view = walkgen::task_robot_settings({}, robot);
   if (video && (film.width > view.view_width || film.height > view.view_height)) {
     const double shrink =
         std::min(double(view.view_width) / film.width, double(view.view_height) / film.height);
@@ -368,8 +383,9 @@ int main(int argc, char** argv) {
     if (!names.empty() && std::find(names.begin(), names.end(), task.name) == names.end()) {
       continue;
     }
-    std::printf("%s: %s, target (%.2f, %.2f), up to %.0f s\n", task.name.c_str(),
-                task.description.c_str(), task.target.x(), task.target.y(), task.time_limit);
+    std::printf("%s (%s): %s, target (%.2f, %.2f), up to %.0f s\n", task.name.c_str(),
+                robot.name.c_str(), task.description.c_str(), task.target.x(), task.target.y(),
+                task.time_limit);
     std::fflush(stdout);
     std::unique_ptr<VideoPipe> pipe;  // ffmpeg, started at the first frame
     StripFrames strip;
@@ -378,41 +394,46 @@ int main(int argc, char** argv) {
     double render_seconds = 0.0, pipe_seconds = 0.0;  // wall time of the frames [s]
     double next_report = 10.0;
     walkgen::CameraImage image;
-    const auto result = walkgen::run_task(
-        task, 2.0,
-        [&](walkgen::MujocoRobot& robot, const walkgen::SimLoop& loop,
-            const walkgen::TaskResult& r) {
-          const double t = r.rows.empty() ? 0.0 : r.rows.back().time;
-          if (t >= next_report) {  // progress every 10 s simulated
-            const auto& st = loop.mpc().state();
-            std::printf("  t = %5.1f s: CoM (%5.2f, %5.2f), heading %5.2f rad, %.2f m to go\n", t,
-                        st.com_x[0], st.com_y[0], st.heading(),
-                        (Eigen::Vector2d(st.com_x[0], st.com_y[0]) - task.target).norm());
-            std::fflush(stdout);
-            next_report += 10.0;
-          }
-          if (!filming) return;
-          using Clock = std::chrono::steady_clock;
-          const auto start = Clock::now();
-          const Eigen::Vector2d c = walkgen::true_com(robot);
-          if (!robot.render_view(Eigen::Vector3d(c.x(), c.y(), 0.3), kCameraDistance,
+    walkgen::TaskResult result;
+    try {
+      result = walkgen::run_task(
+          task, robot, 2.0,
+          [&](walkgen::MujocoRobot& sim, const walkgen::WalkingState<double>& st,
+              const walkgen::TaskResult& r) {
+            const double t = r.rows.empty() ? 0.0 : r.rows.back().time;
+            if (t >= next_report) {  // progress every 10 s simulated
+              std::printf("  t = %5.1f s: CoM (%5.2f, %5.2f), heading %5.2f rad, %.2f m to go\n", t,
+                          st.com_x[0], st.com_y[0], st.heading(),
+                          (Eigen::Vector2d(st.com_x[0], st.com_y[0]) - task.target).norm());
+              std::fflush(stdout);
+              next_report += 10.0;
+            }
+            if (!filming) return;
+            using Clock = std::chrono::steady_clock;
+            const auto start = Clock::now();
+            const Eigen::Vector2d c = walkgen::true_com(sim);
+            if (!sim.render_view(Eigen::Vector3d(c.x(), c.y(), 0.3), kCameraDistance,
                                  kCameraAzimuth, kCameraElevation, film.width, film.height,
                                  image)) {
-            std::printf("  no video: %s\n", robot.render_cameras().message.c_str());
-            filming = false;
-            return;
-          }
-          strip.add(half_size(image, t));
-          const auto rendered = Clock::now();
-          if (have_ffmpeg && !pipe) {
-            std::fflush(stdout);  // before ffmpeg writes to the same streams
-            pipe = std::make_unique<VideoPipe>(out_dir + "/" + task.name + ".mp4", film);
-          }
-          if (pipe) pipe->write(image);
-          ++frames;
-          render_seconds += std::chrono::duration<double>(rendered - start).count();
-          pipe_seconds += std::chrono::duration<double>(Clock::now() - rendered).count();
-        });
+              std::printf("  no video: %s\n", sim.render_cameras().message.c_str());
+              filming = false;
+              return;
+            }
+            strip.add(half_size(image, t));
+            const auto rendered = Clock::now();
+            if (have_ffmpeg && !pipe) {
+              std::fflush(stdout);  // before ffmpeg writes to the same streams
+              pipe = std::make_unique<VideoPipe>(out_dir + "/" + task.name + ".mp4", film);
+            }
+            if (pipe) pipe->write(image);
+            ++frames;
+            render_seconds += std::chrono::duration<double>(rendered - start).count();
+            pipe_seconds += std::chrono::duration<double>(Clock::now() - rendered).count();
+          });
+    } catch (const walkgen::invalid_argument& e) {  // the robot's models cannot be loaded
+      std::fprintf(stderr, "walking_simulation: --robot %s: %s\n", robot_name.c_str(), e.what());
+      return 1;
+    }
     double mean = 0.0, sd = 0.0;
     result.zmp_distance(mean, sd);
     std::printf(
@@ -461,7 +482,7 @@ int main(int argc, char** argv) {
         files_ok = false;
       } else if (sent > 0) {
         std::printf("  wrote %s/%s.mp4 (%d frames, %g fps = %gx real time)\n", out_dir.c_str(),
-                    task.name.c_str(), sent, film.fps, film.fps * kTick);
+                    task.name.c_str(), sent, film.fps, film.fps * robot.walking.t);
       }
     }
   }

@@ -11,5 +11,7 @@ namespace walkgen {
 template class KinematicTree<double>;
 template class CeresInverseKinematics<kHumanoidJoints>;
 template class WalkingLoop<16, HumanoidIk>;
+template class CeresInverseKinematics<Eigen::Dynamic>;
+template class WalkingLoop<16, CeresInverseKinematics<Eigen::Dynamic>>;  // RobotLoop
 
 }  // namespace walkgen

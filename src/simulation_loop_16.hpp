@@ -20,5 +20,7 @@ namespace walkgen {
 extern template class KinematicTree<double>;
 extern template class CeresInverseKinematics<kHumanoidJoints>;
 extern template class WalkingLoop<16, HumanoidIk>;
+extern template class CeresInverseKinematics<Eigen::Dynamic>;
+extern template class WalkingLoop<16, CeresInverseKinematics<Eigen::Dynamic>>;  // RobotLoop
 
 }  // namespace walkgen

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -367,6 +368,30 @@ TEST(MujocoRobot, AddsSceneObjectsToTheWorldAndRendersAFreeView) {
   settings.objects[0].name = "ok";
   settings.objects[0].size.x() = -1.0;
   EXPECT_NE(thrown_message(settings).find("'ok'"), std::string::npos);
+}
+
+// A model split over files (the G1's scene includes its robot file, whose meshes lie in a
+// folder beside it): with objects added, the includes are still read from the model's folder.
+TEST(MujocoRobot, AddsObjectsToAModelThatIncludesFilesFromItsFolder) {
+  const std::string folder = ::testing::TempDir() + "walkgen_split_model/";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder + "robot_part.xml") << read_text(walkgen::humanoid_mjcf_path());
+  std::ofstream(folder + "scene.xml")
+      << "<mujoco model=\"scene\">\n  <include file=\"robot_part.xml\"/>\n"
+         "  <worldbody>\n    <light name=\"lamp\" pos=\"1 0 3\"/>\n  </worldbody>\n</mujoco>\n";
+  MujocoRobotSettings settings;
+  settings.model_path = folder + "scene.xml";
+  walkgen::SceneObject box;
+  box.name = "chair";
+  box.position = Eigen::Vector3d(1.0, 0.5, 0.0);
+  box.size = Eigen::Vector3d(0.2, 0.3, 0.4);
+  settings.objects = {box};
+  MujocoRobot robot(settings);  // threw "Include error ... robot_part.xml" before
+  EXPECT_GE(mj_name2id(robot.model(), mjOBJ_GEOM, "chair"), 0);
+  EXPECT_GE(mj_name2id(robot.model(), mjOBJ_LIGHT, "lamp"), 0);
+  ASSERT_EQ(robot.step(0.05), RobotStatus::ok);
+  EXPECT_NEAR(robot.output().base_height, 0.5062, 0.01);  // the robot of the included file
 }
 
 TEST(MujocoRobot, MovesMovableObjectsAndTexturesTexturedOnes) {

@@ -36,6 +36,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -528,6 +529,11 @@ class MujocoRobot final : public Robot {
     }
     q_from_ = q_target_;
     for (int a = 0; a < model_->nu && info_.drive == JointDrive::torque; ++a) data_->ctrl[a] = 0.0;
+    // Position servos hold the initial pose from the first moment (without a keyframe the
+    // controls would be zero, and the first measurement would feel the servos pull).
+    for (std::size_t i = 0; i < joints_.size() && info_.drive == JointDrive::position; ++i) {
+      data_->ctrl[joints_[i].actuator] = q_target_[static_cast<Eigen::Index>(i)];
+    }
     mj_forward(model_.get(), data_.get());
     output_.status = RobotStatus::ok;
     output_.message.clear();
@@ -609,8 +615,8 @@ class MujocoRobot final : public Robot {
 
   /// The MJCF of `path` with settings_.objects inserted at the end of its worldbody and the
   /// appearance's floor texture and material in an <asset> section of their own, loaded from
-  /// memory (MuJoCo's virtual file system: asset files of the model, if any, must then be found
-  /// from the working directory; walkgen's humanoid has none).
+  /// memory (MuJoCo's virtual file system); the files the model includes and its meshes are
+  /// read from the model's folder, as when it is loaded from its file.
   mjModel* load_with_additions(const std::string& path, char* error, int error_size) const {
     std::ifstream in(path);
     std::stringstream text;
@@ -667,7 +673,10 @@ class MujocoRobot final : public Robot {
     // The VFS is large (MuJoCo 2.2: fixed arrays of file names): on the heap, once.
     auto vfs = std::make_unique<mjVFS>();
     mj_defaultVFS(vfs.get());
-    const std::string name = "walkgen_scene.xml";
+    // Named as if beside the model file: MuJoCo strips the folder to find it in the VFS, and
+    // resolves the model's own includes and mesh files from that folder on disk.
+    const std::string name =
+        (std::filesystem::path(path).parent_path() / "walkgen_scene_with_objects.xml").string();
     mj_makeEmptyFileVFS(vfs.get(), name.c_str(), int(xml.size()));
     const int index = mj_findFileVFS(vfs.get(), name.c_str());
     std::memcpy(vfs->filedata[index], xml.data(), xml.size());

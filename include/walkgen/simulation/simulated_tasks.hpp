@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "walkgen/core/exceptions.hpp"
+#include "walkgen/mujoco/robot_model.hpp"
 #include "walkgen/simulation/humanoid_loop.hpp"
 
 namespace walkgen {
@@ -170,36 +171,63 @@ struct TaskResult {
   }
 };
 
-/// The humanoid in MuJoCo with the objects of `task`.
-inline MujocoRobotSettings task_robot_settings(const SimTask& task) {
-  MujocoRobotSettings s = mujoco_robot_settings(walkgen_humanoid_description());
+/// `robot` (default walkgen's humanoid) in MuJoCo with the objects of `task`.
+inline MujocoRobotSettings task_robot_settings(
+    const SimTask& task, const RobotDescription& robot = walkgen_humanoid_description()) {
+  MujocoRobotSettings s = mujoco_robot_settings(robot);
   s.objects = task_objects(task);
   s.view_width = 960;  // walking_simulation --video films at up to 960 x 540
   s.view_height = 540;
   return s;
 }
 
-/// The humanoid's walking settings (Heicub's, walkgen_humanoid_description().walking) with the
+/// `robot`'s walking settings (RobotDescription::walking; walkgen's humanoid: Heicub's) with the
 /// task's obstacles.
-inline WalkingSettings<double> task_walking_settings(const SimTask& task) {
-  WalkingSettings<double> s = walkgen_humanoid_description().walking;
+inline WalkingSettings<double> task_walking_settings(
+    const SimTask& task, const RobotDescription& robot = walkgen_humanoid_description()) {
+  WalkingSettings<double> s = robot.walking;
   s.obstacles = task.obstacles;
   return s;
 }
 
-/// Runs `task` closed loop until the steering stops (plus `settle` seconds standing), the time
-/// limit, or a fall. `on_tick(robot, loop, result)` runs after every tick (e.g. to render).
-/// Numerical outcomes (QP and IK failures, a fall) are in the result, never thrown.
-/// @throws walkgen::invalid_argument when the humanoid's model cannot be loaded.
-inline TaskResult run_task(
-    const SimTask& task, double settle = 2.0,
-    const std::function<void(MujocoRobot&, const SimLoop&, const TaskResult&)>& on_tick = nullptr) {
+/// The kinematic tree the closed loop of `robot` uses: from its URDF when the description names
+/// one, else from its MJCF (plus the frames the description adds).
+/// @throws walkgen::invalid_argument when the model cannot be read or lacks a name of `robot`.
+inline KinematicTree<double> robot_kinematic_tree(const RobotDescription& robot) {
+  return robot.urdf_path.empty() ? robot_kinematic_tree_from_mjcf(robot)
+                                 : kinematic_tree_from_urdf_file(robot.urdf_path);
+}
+
+/// The closed loop of any robot described by a file: horizon 16, the Ceres IK sized at run
+/// time (walkgen's humanoid has SimLoop, with its joint count fixed at compile time).
+using RobotLoop = WalkingLoop<16, CeresInverseKinematics<>>;
+
+/// What run_task() shows its caller after every tick: the robot, the generator's state (plan
+/// frame = MuJoCo's world) and the result so far.
+using TaskTickCallback =
+    std::function<void(MujocoRobot&, const WalkingState<double>&, const TaskResult&)>;
+
+namespace detail {
+
+/// run_task() with the loop's IK `ik` (on `robot`'s tree, set up for it).
+template <typename Ik>
+TaskResult run_task_with(const SimTask& task, const RobotDescription& description, Ik& ik,
+                         double settle, const TaskTickCallback& on_tick) {
   TaskResult result;
-  static const KinematicTree<double> tree = humanoid_tree();
-  MujocoRobot robot(task_robot_settings(task));
-  HumanoidIk ik(tree);
-  const WalkingSettings<double> settings = task_walking_settings(task);
-  SimLoop loop(settings, robot, ik);
+  MujocoRobot robot(task_robot_settings(task, description));
+  WalkingSettings<double> settings = task_walking_settings(task, description);
+  // The plan's frame is MuJoCo's world: the walk starts on the left sole where the model
+  // stands it (walkgen's humanoid stands it exactly at the settings' foot pose, and keeps its
+  // settings unchanged), the initial CoM moved with it.
+  const Eigen::Vector2d sole = robot.output().ft[0].pose_W_S.translation().head<2>();
+  const Eigen::Vector2d shift = sole - Eigen::Vector2d(settings.foot_x, settings.foot_y);
+  if (shift.norm() > 1e-6) {
+    settings.foot_x += shift.x();
+    settings.foot_y += shift.y();
+    settings.com_x[0] += shift.x();
+    settings.com_y[0] += shift.y();
+  }
+  WalkingLoop<16, Ik> loop(settings, robot, ik, loop_settings(description));
   const LoopTick& started = loop.start();
   const double t0 = robot.output().time;
   if (started.status != LoopStatus::ok) {
@@ -223,7 +251,7 @@ inline TaskResult run_task(
     // WalkingSettings::soft)
     result.qp_failures += tick.mpc != MpcStatus::solved && tick.mpc != MpcStatus::relaxed;
     result.ik_failures += tick.ik_failures;
-    for (const auto& s : loop.samples()) {
+    for (const LoopSample& s : loop.samples()) {
       TaskRow row;
       row.time = s.plan.time;
       row.command = cmd.command;
@@ -238,10 +266,10 @@ inline TaskResult run_task(
       row.base_height = s.base_height;
       for (int f = 0; f < 2; ++f) {  // soles on the ground, at their true poses
         if (!truth.in_contact[std::size_t(f)]) continue;
-        const Eigen::Vector2d sole = s.ft[std::size_t(f)].pose_W_S.translation().head<2>();
+        const Eigen::Vector2d sole_xy = s.ft[std::size_t(f)].pose_W_S.translation().head<2>();
         for (const auto& o : task.obstacles) {
           result.min_obstacle_distance =
-              std::min(result.min_obstacle_distance, (sole - Eigen::Vector2d(o.x, o.y)).norm());
+              std::min(result.min_obstacle_distance, (sole_xy - Eigen::Vector2d(o.x, o.y)).norm());
         }
       }
       result.min_base_height = std::min(result.min_base_height, s.base_height);
@@ -252,7 +280,7 @@ inline TaskResult run_task(
     for (std::size_t k = result.rows.size() - loop.samples().size(); k < result.rows.size(); ++k) {
       result.rows[k].com_true = com;
     }
-    if (on_tick) on_tick(robot, loop, result);
+    if (on_tick) on_tick(robot, loop.mpc().state(), result);
     if (tick.status == LoopStatus::fallen || tick.status == LoopStatus::diverged ||
         tick.status == LoopStatus::fault) {
       result.status = tick.status;
@@ -266,6 +294,34 @@ inline TaskResult run_task(
   result.reached = result.status == LoopStatus::ok && result.stopped &&
                    result.final_distance <= kTaskReachDistance;
   return result;
+}
+
+}  // namespace detail
+
+/// Runs `task` closed loop with `robot` (a description: models/NAME/robot.yaml through
+/// find_robot_description(), or walkgen_humanoid_description()) until the steering stops (plus
+/// `settle` seconds standing), the time limit, or a fall. The loop is WalkingLoop<16, Ik> with
+/// the Ceres IK of ceres_ik_settings(robot): fixed-size (SimLoop's) for a robot of
+/// kHumanoidJoints joints, sized at run time (RobotLoop's) otherwise. `on_tick(robot, state,
+/// result)` runs after every tick (e.g. to render). Numerical outcomes (QP and IK failures, a
+/// fall) are in the result, never thrown.
+/// @throws walkgen::invalid_argument when the robot's models cannot be loaded or lack a name of
+///   the description.
+inline TaskResult run_task(const SimTask& task, const RobotDescription& robot, double settle = 2.0,
+                           const TaskTickCallback& on_tick = nullptr) {
+  const KinematicTree<double> tree = robot_kinematic_tree(robot);
+  if (tree.num_joints() == kHumanoidJoints) {
+    HumanoidIk ik(tree, ceres_ik_settings(robot));
+    return detail::run_task_with(task, robot, ik, settle, on_tick);
+  }
+  CeresInverseKinematics<> ik(tree, ceres_ik_settings(robot));
+  return detail::run_task_with(task, robot, ik, settle, on_tick);
+}
+
+/// run_task() with walkgen's humanoid.
+inline TaskResult run_task(const SimTask& task, double settle = 2.0,
+                           const TaskTickCallback& on_tick = nullptr) {
+  return run_task(task, walkgen_humanoid_description(), settle, on_tick);
 }
 
 }  // namespace walkgen
