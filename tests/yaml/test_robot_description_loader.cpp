@@ -67,8 +67,13 @@ TEST(RobotDescriptionFile, G1FileLoadsWithItsFramesAndGeometry) {
   const walkgen::JointGains gains = walkgen::joint_gains(g1);
   EXPECT_TRUE(gains.kp.allFinite() && gains.kd.allFinite());
   EXPECT_EQ(gains.kp[3], 200.0);  // left_knee_joint
-  EXPECT_EQ(gains.kd[3], 5.0);
+  EXPECT_EQ(gains.kd[3], 7.0);
   EXPECT_EQ(gains.kp[13], 40.0);  // left_shoulder_pitch_joint
+  // The balance section: the contact feed-forward with its gains, no NMPC restart.
+  EXPECT_TRUE(g1.balance.contact_feedforward);
+  EXPECT_EQ(g1.balance.com_kp, 20.0);
+  EXPECT_EQ(g1.balance.com_kd, 8.0);
+  EXPECT_FALSE(g1.balance.nmpc_feedback);
   // The arms are held at the stand pose (the IK leaves them out); legs and waist are not.
   for (const walkgen::JointGroup& group : g1.joint_groups) {
     EXPECT_EQ(group.held, group.name == "arms") << group.name;

@@ -305,6 +305,7 @@ inline WalkingLoopSettings loop_settings(const RobotDescription& robot) {
   s.left_ft_sensor_link = sensors ? robot.ft_sensor_frames[0] : robot.sole_frames[0];
   s.right_ft_sensor_link = sensors ? robot.ft_sensor_frames[1] : robot.sole_frames[1];
   s.estimator = base_estimator_settings(robot);
+  s.com_feedback = robot.balance.nmpc_feedback;
   return s;
 }
 
@@ -915,6 +916,7 @@ class WalkingLoop {
       }
       have_targets_ = true;
     }
+    if (from_ik) robot_.set_balance_reference(balance_reference(last_sample_));
     // Holding before any target was sent (a fault at start()): the robot keeps its own.
     if (have_targets_ && robot_.set_joint_targets(q_robot_) != JointCommandStatus::accepted) {
       count_ik(false);
@@ -936,6 +938,21 @@ class WalkingLoop {
                                         " rad from the vertical, beyond max_tilt " +
                                         std::to_string(loop_.max_tilt) + " rad: falling");
     return false;
+  }
+
+  /// The balance `s` asks for, in the frame of its support sole.
+  static BalanceReference balance_reference(const TrajectorySample<double>& s) {
+    const FootPose<double> sole = planned_support(s);
+    const Eigen::Rotation2Dd to_sole(-sole.q);
+    BalanceReference r;
+    r.valid = true;
+    r.support = s.support_foot == Foot::left ? 0 : 1;
+    r.com = to_sole * Eigen::Vector2d(s.com_x[0] - sole.x, s.com_y[0] - sole.y);
+    r.com_velocity = to_sole * Eigen::Vector2d(s.com_x[1], s.com_y[1]);
+    r.com_acceleration = to_sole * Eigen::Vector2d(s.com_x[2], s.com_y[2]);
+    r.zmp = to_sole * Eigen::Vector2d(s.zmp_x - sole.x, s.zmp_y - sole.y);
+    r.com_height = s.com_z;
+    return r;
   }
 
   /// The support sole's pose in a sample of the plan.

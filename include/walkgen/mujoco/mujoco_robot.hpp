@@ -203,6 +203,12 @@ enum class JointFeedforward : std::uint8_t {
   /// feet in contact by where the CoM lies between them (the torques a standing or slowly
   /// walking robot needs; the bias forces alone treat the legs as hanging).
   weight,
+  /// As weight, with the contact forces that move the CoM as the pattern asks
+  /// (Robot::set_balance_reference): the CoM acceleration c̈ = c̈_ref + balance_kp (c_ref − c) +
+  /// balance_kd (ċ_ref − ċ) in the plane, the feet pushing with m (g + c̈) at the ZMP of that
+  /// acceleration, c − c_z c̈ / g. c and ċ relative to the support sole: what the IMU and the
+  /// joint encoders tell a real robot. Without a reference: weight.
+  balance,
 };
 
 /// "none", "gravity" or "weight", e.g. for logs; "unknown" for a value out of range.
@@ -214,6 +220,8 @@ constexpr const char* to_string(JointFeedforward f) noexcept {
       return "gravity";
     case JointFeedforward::weight:
       return "weight";
+    case JointFeedforward::balance:
+      return "balance";
   }
   return "unknown";
 }
@@ -250,6 +258,8 @@ struct MujocoRobotSettings {
   Eigen::VectorXd kp, kd;
   /// Torque drive: the controller's feed-forward torque.
   JointFeedforward feedforward = JointFeedforward::weight;
+  /// JointFeedforward::balance: feedback gains on the CoM position [1/s^2] and velocity [1/s].
+  double balance_kp = 20.0, balance_kd = 8.0;
   /// Fallen when the base is below this fraction of its initial height.
   double fall_height_ratio = 0.8;
   /// Static objects added to the world of the model (the model file itself is not changed).
@@ -303,6 +313,10 @@ inline void validate(const MujocoRobotSettings& s) {
     check_argument(detail::is_rgb(o.rgb), (where + " rgb").c_str(), "values in [0, 1]",
                    "out of range");
   }
+  check_argument(std::isfinite(s.balance_kp) && std::isfinite(s.balance_kd) &&
+                     s.balance_kp >= 0.0 && s.balance_kd >= 0.0,
+                 "MujocoRobotSettings.balance_kp, balance_kd", "finite gains >= 0",
+                 std::to_string(s.balance_kp) + ", " + std::to_string(s.balance_kd));
   validate(s.appearance, "MujocoRobotSettings.appearance");
 }
 
@@ -325,6 +339,11 @@ inline MujocoRobotSettings mujoco_robot_settings(const RobotDescription& robot) 
     const JointGains gains = joint_gains(robot);
     s.kp = gains.kp;
     s.kd = gains.kd;
+  }
+  if (robot.balance.contact_feedforward) {
+    s.feedforward = JointFeedforward::balance;
+    s.balance_kp = robot.balance.com_kp;
+    s.balance_kd = robot.balance.com_kd;
   }
   return s;
 }
@@ -394,6 +413,8 @@ class MujocoRobot final : public Robot {
     q_target_ = q_target;
     return JointCommandStatus::accepted;
   }
+
+  void set_balance_reference(const BalanceReference& reference) override { balance_ = reference; }
 
   [[nodiscard]] RobotStatus step(double duration) override {
     check_positive("MujocoRobot::step: duration", duration, "a finite duration > 0 s");
@@ -1065,7 +1086,7 @@ class MujocoRobot final : public Robot {
     for (std::size_t i = 0; i < joints_.size(); ++i) {
       tau_ff_[static_cast<Eigen::Index>(i)] = d->qfrc_bias[joints_[i].dof];
     }
-    if (settings_.feedforward != JointFeedforward::weight) return;
+    if (settings_.feedforward == JointFeedforward::gravity) return;
     std::array<bool, 2> contact{{false, false}};
     for (int c = 0; c < d->ncon; ++c) {
       const int f1 = foot_of_body_[std::size_t(m->geom_bodyid[d->contact[c].geom1])];
@@ -1077,9 +1098,26 @@ class MujocoRobot final : public Robot {
     // The CoM's ground projection r, shared between the soles s_L, s_R by its place along
     // the segment between them; each foot's force at its sole shifted by the same offset, so
     // that the forces' centre of pressure is r.
-    const Eigen::Vector3d r(d->subtree_com[3 * base_body_], d->subtree_com[3 * base_body_ + 1],
-                            0.0);
+    Eigen::Vector3d r(d->subtree_com[3 * base_body_], d->subtree_com[3 * base_body_ + 1], 0.0);
     const Eigen::Vector3d s[2] = {sole_pose_W(0).translation(), sole_pose_W(1).translation()};
+    Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();  // of the CoM, in the plane
+    if (settings_.feedforward == JointFeedforward::balance && balance_.valid) {
+      const int f = balance_.support;
+      const Eigen::Isometry3d sole = sole_pose_W(f);
+      const double yaw = std::atan2(sole.linear()(1, 0), sole.linear()(0, 0));
+      const Eigen::Rotation2Dd R(yaw);
+      mj_subtreeVel(m, d);
+      const Eigen::Vector2d c = r.head<2>();
+      const Eigen::Vector2d v(d->subtree_linvel[3 * base_body_],
+                              d->subtree_linvel[3 * base_body_ + 1]);
+      const Eigen::Vector2d c_ref = sole.translation().head<2>() + R * balance_.com;
+      const Eigen::Vector2d a = R * balance_.com_acceleration + settings_.balance_kp * (c_ref - c) +
+                                settings_.balance_kd * (R * balance_.com_velocity - v);
+      const double height = d->subtree_com[3 * base_body_ + 2] - sole.translation().z();
+      const double g = -m->opt.gravity[2];
+      r.head<2>() = c - height / g * a;
+      acceleration.head<2>() = a;
+    }
     double left = contact[0] ? 1.0 : 0.0;
     if (contact[0] && contact[1]) {
       const Eigen::Vector2d between = (s[0] - s[1]).head<2>();
@@ -1095,10 +1133,15 @@ class MujocoRobot final : public Robot {
       Eigen::Vector3d point = s[f] + (r - centre);
       point.z() = s[f].z();
       mj_jac(m, d, jacobian_.data(), nullptr, point.data(), soles_[f].body);
+      const double mass = m->body_subtreemass[base_body_];
       for (std::size_t i = 0; i < joints_.size(); ++i) {
-        // The ground pushes the foot up with share * m g: tau -= J_z^T f_z.
+        // The ground pushes the foot up with share * m g (and sideways with share * m c̈):
+        // tau -= J^T f.
+        const auto dof = std::size_t(joints_[i].dof);
         tau_ff_[static_cast<Eigen::Index>(i)] -=
-            jacobian_[std::size_t(2 * m->nv + joints_[i].dof)] * share * weight;
+            share * (jacobian_[2 * std::size_t(m->nv) + dof] * weight +
+                     mass * (jacobian_[dof] * acceleration.x() +
+                             jacobian_[std::size_t(m->nv) + dof] * acceleration.y()));
       }
     }
   }
@@ -1320,6 +1363,7 @@ class MujocoRobot final : public Robot {
 
   // Torque drive: the controller and its buffers (sized once).
   std::optional<JointTorqueController> controller_;
+  BalanceReference balance_;  ///< set_balance_reference(): JointFeedforward::balance
   Eigen::VectorXd q_from_, q_ref_, dq_ref_, tau_ff_, q_now_, dq_now_;
   std::vector<mjtNum> jacobian_;  ///< 3 x nv, row-major (mj_jac)
 

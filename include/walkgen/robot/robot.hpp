@@ -181,6 +181,21 @@ struct RobotInfo {
   int image_height = 0;                     ///< [px]
 };
 
+/// What the walking pattern asks of the robot's balance over the next command period, in the
+/// frame of the planned support sole (x forward, y left, on the sole's plane): where the centre
+/// of mass should be and how it should move, and where the ZMP is planned. A torque-driven
+/// robot's controller may turn it into contact forces (MujocoRobot, JointFeedforward::balance);
+/// a robot that does not use it ignores it.
+struct BalanceReference {
+  bool valid = false;
+  int support = 0;                                ///< the sole of the frame: 0 left, 1 right
+  Eigen::Vector2d com = Eigen::Vector2d::Zero();  ///< [m]
+  Eigen::Vector2d com_velocity = Eigen::Vector2d::Zero();      ///< [m/s]
+  Eigen::Vector2d com_acceleration = Eigen::Vector2d::Zero();  ///< [m/s^2]
+  Eigen::Vector2d zmp = Eigen::Vector2d::Zero();               ///< [m]
+  double com_height = 0.0;                                     ///< [m] above the sole
+};
+
 /// A robot: joint position targets in, measurements out. Blocks step (convention 13): the
 /// application owns the loop, the clock and the threads.
 class Robot {
@@ -199,6 +214,10 @@ class Robot {
   /// once it is not ok, step() does nothing until reset().
   /// @throws walkgen::invalid_argument when duration is not finite and > 0.
   [[nodiscard]] virtual RobotStatus step(double duration) = 0;
+
+  /// The balance the pattern asks for over the next step() (see BalanceReference); ignored
+  /// unless the robot's controller uses it.
+  virtual void set_balance_reference(const BalanceReference& reference) { (void)reference; }
 
   /// The latest measurements.
   virtual const RobotOutput& output() const = 0;

@@ -51,6 +51,17 @@ struct JointGroup {
   bool held = false;
 };
 
+/// How a torque-driven robot keeps its balance while it walks (docs/robots.md, "Balance"):
+/// the joint controller's feed-forward puts the contact forces under the CoM motion the pattern
+/// asks for, with feedback on the CoM (MujocoRobot, JointFeedforward::balance), and whether the
+/// NMPC is restarted from the measured CoM (WalkingLoopSettings::com_feedback).
+struct BalanceDescription {
+  bool contact_feedforward = false;  ///< false: the weight feed-forward only
+  double com_kp = 20.0;              ///< [1/s^2] CoM position feedback, >= 0
+  double com_kd = 8.0;               ///< [1/s] CoM velocity feedback, >= 0
+  bool nmpc_feedback = true;         ///< restart the NMPC from the measured CoM (§6.3)
+};
+
 /// Everything that names or sizes one robot. Left before right in every pair; an optional pair
 /// (force-torque sensors, cameras) is two empty names when the robot has none.
 struct RobotDescription {
@@ -80,6 +91,8 @@ struct RobotDescription {
   std::vector<JointAngle> stand_pose;
   /// Feedback gains by joint group; each joint in at most one group.
   std::vector<JointGroup> joint_groups;
+  /// How it balances while walking (torque-driven robots; the defaults: the thesis' loop).
+  BalanceDescription balance;
   /// The walking settings the robot walks with: foot size and distance, feasibility regions and
   /// CoM height (geometry()), timing and weights (generator()), the start (initial_state()).
   WalkingSettings<double> walking;
@@ -163,6 +176,10 @@ inline void validate(const RobotDescription& d) {
                      "'" + joint + "' " + std::to_string(times) + " times");
     }
   }
+  check_argument(std::isfinite(d.balance.com_kp) && std::isfinite(d.balance.com_kd) &&
+                     d.balance.com_kp >= 0.0 && d.balance.com_kd >= 0.0,
+                 "RobotDescription.balance", "finite gains com_kp, com_kd >= 0",
+                 std::to_string(d.balance.com_kp) + ", " + std::to_string(d.balance.com_kd));
   validate(d.walking);
 }
 

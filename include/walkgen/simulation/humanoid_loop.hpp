@@ -10,6 +10,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "walkgen/control/go_to_target.hpp"
 #include "walkgen/control/walking_loop.hpp"
@@ -26,6 +27,17 @@ using SimLoop = WalkingLoop<16, HumanoidIk>;
 inline PlanarPose walking_pose(const WalkingState<double>& st) {
   return {(st.support.x + st.swing.x.position) / 2.0, (st.support.y + st.swing.y.position) / 2.0,
           st.heading()};
+}
+
+/// The robot's pose as someone watching it sees it: the middle of its soles' true poses
+/// (RobotOutput::ft of a simulator) and their mean heading. Where a robot's feet land off the
+/// plan (a torque-driven robot slips and turns), steering on this pose keeps it on its way.
+inline PlanarPose measured_walking_pose(const RobotOutput& out) {
+  const Eigen::Isometry3d& l = out.ft[0].pose_W_S;
+  const Eigen::Isometry3d& r = out.ft[1].pose_W_S;
+  const Eigen::Vector2d middle = (l.translation() + r.translation()).head<2>() / 2.0;
+  const Eigen::Vector2d heading = l.linear().col(0).head<2>() + r.linear().col(0).head<2>();
+  return {middle.x(), middle.y(), std::atan2(heading.y(), heading.x())};
 }
 
 /// The true whole-body CoM of a MuJoCo robot on the ground plane (x, y) [m]: MuJoCo's subtree

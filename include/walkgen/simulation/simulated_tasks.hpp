@@ -240,7 +240,7 @@ TaskResult run_task_with(const SimTask& task, const RobotDescription& descriptio
   GoToTarget steering(task.target, settings.max_command, task.obstacles, steering_settings);
   double stopped_at = -1.0;
   while (robot.output().time - t0 < task.time_limit) {
-    const GoToTargetCommand cmd = steering(walking_pose(loop.mpc().state()));
+    const GoToTargetCommand cmd = steering(measured_walking_pose(robot.output()));
     result.rejected_commands += loop.set_command(cmd.command) != CommandStatus::accepted;
     if (cmd.reached && stopped_at < 0.0) {
       result.stopped = true;

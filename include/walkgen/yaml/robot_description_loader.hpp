@@ -13,6 +13,8 @@
 ///   bodies of the model (e.g. soles of a model without sites); stand_keyframe;
 ///   stand_pose: {joint: angle [rad]}; joint_groups: {group: {joints: [..], kp, kd, held}}
 ///   (feedback gains of a torque-controlled robot; held: true keeps the group at its stand pose);
+///   balance: {com_kp, com_kd, nmpc_feedback} (a torque-driven robot's contact feed-forward
+///   with CoM feedback; nmpc_feedback: false walks the plan without restarting it);
 ///   walking_preset: hrp2 | heicub (default heicub), the defaults of walking: {walking-settings
 ///   keys of docs/yaml.md, flat or in sections}.
 /// Unknown keys, a missing required key and values of the wrong type are errors naming the key
@@ -74,6 +76,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
                                       "stand_keyframe",
                                       "stand_pose",
                                       "joint_groups",
+                                      "balance",
                                       "walking_preset",
                                       "walking"};
   std::string known;
@@ -193,6 +196,25 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
       }
       g.check(!group.joints.empty() && has_kp && has_kd, "a map with joints, kp and kd");
       d.joint_groups.push_back(group);
+    }
+  }
+  if (root["balance"]) {
+    const YamlValue b = value("balance");
+    b.check(b.node.IsMap(), "a map {com_kp, com_kd, nmpc_feedback}");
+    d.balance.contact_feedforward = true;
+    for (const auto& field : b.node) {
+      const std::string k = text(b.child(field.first, ".<key>"));
+      const YamlValue fv = b.child(field.second, "." + k);
+      if (k == "com_kp") {
+        d.balance.com_kp = fv.number<double>();
+      } else if (k == "com_kd") {
+        d.balance.com_kd = fv.number<double>();
+      } else if (k == "nmpc_feedback") {
+        fv.read(d.balance.nmpc_feedback);
+      } else {
+        check_argument(false, fv.where().c_str(), "com_kp, com_kd or nmpc_feedback",
+                       "an unknown key");
+      }
     }
   }
   std::string preset = "heicub";
