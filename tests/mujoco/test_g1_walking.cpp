@@ -44,7 +44,7 @@ TEST(G1Walking, TheG1WalksTwoMetresStraightToTheTarget) {
   r.zmp_distance(mean, sd);
   std::printf(
       "G1 straight: %s after %.1f s, %.3f m from the target, mean speed %.3f m/s, ZMP error "
-      "%.2f +- %.2f cm, true ZMP in the sole rectangles %.1f %% (worst %.1f mm outside), lowest "
+      "%.2f +- %.2f cm, true ZMP in the contact polygon %.1f %% (worst %.1f mm outside), lowest "
       "base %.3f m\n",
       r.reached ? "reached" : "NOT reached", r.time, r.final_distance, r.mean_speed(), 100.0 * mean,
       100.0 * sd, 100.0 * r.inside_fraction(), -1000.0 * worst_margin(r), r.min_base_height);
@@ -54,9 +54,11 @@ TEST(G1Walking, TheG1WalksTwoMetresStraightToTheTarget) {
   EXPECT_EQ(r.ik_failures, 0);
   EXPECT_GE(r.mean_speed(), 0.1);
   EXPECT_LE(mean, 0.05);
-  // The sole rectangle of the file is 0.05 m wide, the toe spheres stand 0.06 m apart: the true
-  // ZMP may lie up to 5 mm beyond the rectangle's side at the toes, never further.
-  EXPECT_GE(worst_margin(r), -0.0055);
+  // The support polygon is the feet's contact region (the file's sole_polygon: the spheres'
+  // lowest points). The true ZMP never leaves it by more than the contacts' penetration; in
+  // about a fifth of the samples it lies on its edge (a foot rolling on two spheres).
+  EXPECT_GE(worst_margin(r), -0.0005);
+  EXPECT_GE(r.inside_fraction(), 0.75);
   EXPECT_GE(r.min_base_height, 0.9 * 0.7634);
 }
 

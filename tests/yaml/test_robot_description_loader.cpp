@@ -69,6 +69,10 @@ TEST(RobotDescriptionFile, G1FileLoadsWithItsFramesAndGeometry) {
   EXPECT_EQ(gains.kp[3], 200.0);  // left_knee_joint
   EXPECT_EQ(gains.kd[3], 7.0);
   EXPECT_EQ(gains.kp[13], 40.0);  // left_shoulder_pitch_joint
+  // The contact region: the spheres' lowest points, wider at the toes.
+  ASSERT_EQ(g1.sole_polygon.size(), 4u);
+  EXPECT_EQ(g1.sole_polygon[0], Eigen::Vector2d(0.085, 0.03));
+  EXPECT_EQ(walkgen::sole_corners(g1)[3], Eigen::Vector2d(-0.085, -0.025));
   // The balance section: the contact feed-forward with its gains, no NMPC restart.
   EXPECT_TRUE(g1.balance.contact_feedforward);
   EXPECT_EQ(g1.balance.com_kp, 20.0);
@@ -106,6 +110,11 @@ TEST(RobotDescriptionFile, ErrorsNameTheKey) {
   bad("name: tiny\nmjcf: tiny.xml\njoints: [hip]\nsole_frames: [l, r]\n",
       {"the key 'base_body'", "none"});
   bad(kMinimal + "cameras: [left]\n", {"key 'cameras'", "two names"});
+  bad(kMinimal + "sole_polygon: [[0.1, 0.05], [0.1, -0.05]]\n", {"sole_polygon", "four corners"});
+  bad(kMinimal + "sole_polygon: [[0.1, 0.05], [0.1, -0.04], [-0.1, 0.05], [-0.1, -0.05]]\n",
+      {"RobotDescription.sole_polygon", "symmetric"});
+  bad(kMinimal + "balance: {com_kp: -1}\n", {"RobotDescription.balance", "com_kp"});
+  bad(kMinimal + "balance: {gain: 1}\n", {"com_kp, com_kd or nmpc_feedback", "unknown key"});
   bad(kMinimal + "ft_sensor_frames: [l_ft, r_ft]\n", {"the key 'ft_sensor_height'"});
   bad(kMinimal + "ft_sensor_height: 0.03\n", {"ft_sensor_height only with ft_sensor_frames"});
   bad(kMinimal + "stand_pose: {hip: .nan}\n", {"key 'stand_pose.hip'", "a finite number"});

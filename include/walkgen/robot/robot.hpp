@@ -284,34 +284,34 @@ inline MeasuredZmp measured_zmp(const std::array<ForceTorqueReading, 2>& ft, dou
 }
 
 /// How far a measured ZMP lies inside the support polygon: the convex hull of the soles in
-/// contact (MeasuredZmp::in_contact), each a foot_length × foot_width rectangle centred
-/// sensor_height below its sensor origin along the sensor's z, with the sensor's x forward.
-/// Horizontal plane of the world frame.
+/// contact (MeasuredZmp::in_contact), each the quadrilateral `sole` (its corners in the sole's
+/// plane, x forward, in any order; e.g. the contact points of a foot) around the point
+/// sensor_height below its sensor origin along the sensor's z. Horizontal plane of the world
+/// frame.
 ///
 /// @return the distance [m] from the ZMP to the nearest edge when inside (≥ 0), the largest
 ///   violated edge distance, negated, when outside (< 0; for a convex polygon at most the
 ///   Euclidean distance); NaN when zmp is not valid.
-/// @throws walkgen::invalid_argument when sensor_height is not finite and >= 0 or a foot size
-///   not finite and > 0.
+/// @throws walkgen::invalid_argument when sensor_height is not finite and >= 0 or a corner is
+///   not finite.
 inline double support_polygon_margin(const MeasuredZmp& zmp,
                                      const std::array<ForceTorqueReading, 2>& ft,
-                                     double sensor_height, double foot_length, double foot_width) {
+                                     double sensor_height,
+                                     const std::array<Eigen::Vector2d, 4>& sole) {
   check_argument(std::isfinite(sensor_height) && sensor_height >= 0.0,
                  "support_polygon_margin: sensor_height", "a finite height >= 0 m", sensor_height);
-  check_positive("support_polygon_margin: foot_length", foot_length, "a finite length > 0 m");
-  check_positive("support_polygon_margin: foot_width", foot_width, "a finite width > 0 m");
+  for (const Eigen::Vector2d& c : sole) {
+    check_argument(c.allFinite(), "support_polygon_margin: sole", "finite corners [m]",
+                   "NaN or inf");
+  }
   if (!zmp.valid) return std::numeric_limits<double>::quiet_NaN();
   std::array<Eigen::Vector2d, 8> corners;
   int n = 0;
   for (int i = 0; i < 2; ++i) {
     if (!zmp.in_contact[std::size_t(i)]) continue;
     const Eigen::Isometry3d& T = ft[std::size_t(i)].pose_W_S;
-    for (double sx : {0.5, -0.5}) {
-      for (double sy : {0.5, -0.5}) {
-        const Eigen::Vector3d p =
-            T * Eigen::Vector3d(sx * foot_length, sy * foot_width, -sensor_height);
-        corners[std::size_t(n++)] = p.head<2>();
-      }
+    for (const Eigen::Vector2d& c : sole) {
+      corners[std::size_t(n++)] = (T * Eigen::Vector3d(c.x(), c.y(), -sensor_height)).head<2>();
     }
   }
   // Convex hull (Andrew's monotone chain) of at most 8 corners, counter-clockwise.
@@ -348,6 +348,18 @@ inline double support_polygon_margin(const MeasuredZmp& zmp,
     margin = std::min(margin, inward.normalized().dot(p - hull[std::size_t(e)]));
   }
   return margin;
+}
+
+/// support_polygon_margin() with foot_length × foot_width rectangles centred under the sensors,
+/// x forward.
+/// @throws walkgen::invalid_argument as above, or when a foot size is not finite and > 0.
+inline double support_polygon_margin(const MeasuredZmp& zmp,
+                                     const std::array<ForceTorqueReading, 2>& ft,
+                                     double sensor_height, double foot_length, double foot_width) {
+  check_positive("support_polygon_margin: foot_length", foot_length, "a finite length > 0 m");
+  check_positive("support_polygon_margin: foot_width", foot_width, "a finite width > 0 m");
+  const double x = foot_length / 2.0, y = foot_width / 2.0;
+  return support_polygon_margin(zmp, ft, sensor_height, {{{x, y}, {x, -y}, {-x, y}, {-x, -y}}});
 }
 
 }  // namespace walkgen

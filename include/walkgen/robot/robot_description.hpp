@@ -91,6 +91,11 @@ struct RobotDescription {
   std::vector<JointAngle> stand_pose;
   /// Feedback gains by joint group; each joint in at most one group.
   std::vector<JointGroup> joint_groups;
+  /// The corners of each sole's contact region in its sole frame [m] (x forward, y left),
+  /// where they are not the walking settings' foot_length × foot_width rectangle: e.g. a foot
+  /// touching through contact points. Empty or four corners, symmetric about the sole's x axis
+  /// (the same region for both soles). Where the true ZMP is checked (support_polygon_margin()).
+  std::vector<Eigen::Vector2d> sole_polygon;
   /// How it balances while walking (torque-driven robots; the defaults: the thesis' loop).
   BalanceDescription balance;
   /// The walking settings the robot walks with: foot size and distance, feasibility regions and
@@ -176,11 +181,36 @@ inline void validate(const RobotDescription& d) {
                      "'" + joint + "' " + std::to_string(times) + " times");
     }
   }
+  check_argument(d.sole_polygon.empty() || d.sole_polygon.size() == 4,
+                 "RobotDescription.sole_polygon", "none or four corners",
+                 std::to_string(d.sole_polygon.size()) + " corners");
+  for (const Eigen::Vector2d& c : d.sole_polygon) {
+    check_argument(c.allFinite() && c.norm() < 10.0, "RobotDescription.sole_polygon",
+                   "finite corners within 10 m of the sole frame", "NaN, inf or farther");
+    bool mirrored = false;
+    for (const Eigen::Vector2d& o : d.sole_polygon) {
+      mirrored = mirrored || (o - Eigen::Vector2d(c.x(), -c.y())).norm() < 1e-9;
+    }
+    check_argument(mirrored, "RobotDescription.sole_polygon",
+                   "corners symmetric about the sole's x axis (the same region for both soles)",
+                   "a corner without its mirror image");
+  }
   check_argument(std::isfinite(d.balance.com_kp) && std::isfinite(d.balance.com_kd) &&
                      d.balance.com_kp >= 0.0 && d.balance.com_kd >= 0.0,
                  "RobotDescription.balance", "finite gains com_kp, com_kd >= 0",
                  std::to_string(d.balance.com_kp) + ", " + std::to_string(d.balance.com_kd));
   validate(d.walking);
+}
+
+/// The corners of the left sole's contact region in its frame: RobotDescription::sole_polygon,
+/// or the walking settings' foot_length × foot_width rectangle (both symmetric about x: the
+/// right sole's too).
+inline std::array<Eigen::Vector2d, 4> sole_corners(const RobotDescription& d) {
+  if (d.sole_polygon.size() == 4) {
+    return {{d.sole_polygon[0], d.sole_polygon[1], d.sole_polygon[2], d.sole_polygon[3]}};
+  }
+  const double x = d.walking.foot_length / 2.0, y = d.walking.foot_width / 2.0;
+  return {{{x, y}, {x, -y}, {-x, y}, {-x, -y}}};
 }
 
 /// Feedback gains per joint, in joint_names order.

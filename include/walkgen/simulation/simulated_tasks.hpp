@@ -228,6 +228,7 @@ TaskResult run_task_with(const SimTask& task, const RobotDescription& descriptio
     settings.com_y[0] += shift.y();
   }
   WalkingLoop<16, Ik> loop(settings, robot, ik, loop_settings(description));
+  const std::array<Eigen::Vector2d, 4> sole_region = sole_corners(description);
   const LoopTick& started = loop.start();
   const double t0 = robot.output().time;
   if (started.status != LoopStatus::ok) {
@@ -261,8 +262,8 @@ TaskResult run_task_with(const SimTask& task, const RobotDescription& descriptio
       const MeasuredZmp truth = measured_zmp(s.ft, robot.info().ft_sensor_height);
       row.zmp_true = truth.zmp_W.head<2>();
       row.zmp_valid = s.zmp.valid && truth.valid;
-      row.support_margin = support_polygon_margin(truth, s.ft, robot.info().ft_sensor_height,
-                                                  settings.foot_length, settings.foot_width);
+      row.support_margin =
+          support_polygon_margin(truth, s.ft, robot.info().ft_sensor_height, sole_region);
       row.base_height = s.base_height;
       for (int f = 0; f < 2; ++f) {  // soles on the ground, at their true poses
         if (!truth.in_contact[std::size_t(f)]) continue;

@@ -13,10 +13,11 @@
 ///   bodies of the model (e.g. soles of a model without sites); stand_keyframe;
 ///   stand_pose: {joint: angle [rad]}; joint_groups: {group: {joints: [..], kp, kd, held}}
 ///   (feedback gains of a torque-controlled robot; held: true keeps the group at its stand pose);
-///   balance: {com_kp, com_kd, nmpc_feedback} (a torque-driven robot's contact feed-forward
-///   with CoM feedback; nmpc_feedback: false walks the plan without restarting it);
-///   walking_preset: hrp2 | heicub (default heicub), the defaults of walking: {walking-settings
-///   keys of docs/yaml.md, flat or in sections}.
+///   sole_polygon: [[x, y] x 4] (each sole's contact region, symmetric about x, where it is not
+///   the walking settings' rectangle); balance: {com_kp, com_kd, nmpc_feedback} (a torque-driven
+///   robot's contact feed-forward with CoM feedback; nmpc_feedback: false walks the plan without
+///   restarting it); walking_preset: hrp2 | heicub (default heicub), the defaults of walking:
+///   {walking-settings keys of docs/yaml.md, flat or in sections}.
 /// Unknown keys, a missing required key and values of the wrong type are errors naming the key
 /// and the file's line; validate(RobotDescription) runs on the result.
 
@@ -76,6 +77,7 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
                                       "stand_keyframe",
                                       "stand_pose",
                                       "joint_groups",
+                                      "sole_polygon",
                                       "balance",
                                       "walking_preset",
                                       "walking"};
@@ -196,6 +198,17 @@ inline RobotDescription robot_description_from_node_unguarded(const YAML::Node& 
       }
       g.check(!group.joints.empty() && has_kp && has_kd, "a map with joints, kp and kd");
       d.joint_groups.push_back(group);
+    }
+  }
+  if (root["sole_polygon"]) {
+    const YamlValue polygon = value("sole_polygon");
+    polygon.check(polygon.node.IsSequence() && polygon.node.size() == 4,
+                  "a list of four corners [[x, y], ...] in the sole frame");
+    for (std::size_t i = 0; i < 4; ++i) {
+      const YamlValue c = polygon.child(polygon.node[i], "[" + std::to_string(i) + "]");
+      c.check(c.node.IsSequence() && c.node.size() == 2, "a corner [x, y] [m]");
+      d.sole_polygon.emplace_back(c.child(c.node[0], "[0]").number<double>(),
+                                  c.child(c.node[1], "[1]").number<double>());
     }
   }
   if (root["balance"]) {
