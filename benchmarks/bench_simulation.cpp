@@ -3,13 +3,17 @@
 // steps of 2 ms, CoM feedback, measured ZMP) per iteration, walking forward and turning at
 // Heicub's speeds. The counter real_time_factor is simulated seconds per wall-clock second
 // (goal ≥ 10); side by side, the parts: the physics alone for the same 0.4 s (the robot standing
-// on its position servos) and the NMPC + IK without physics.
+// on its position servos) and the NMPC + IK without physics. BM_ClosedLoopTickG1: the same loop
+// with the Unitree G1 from its description file (torque motors and their joint controller at
+// the physics rate, the balance feed-forward, the Ceres IK sized at run time; t = 0.1 s per
+// tick) walking forward at 0.1 m/s.
 //   build/release/benchmarks/bench_simulation --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true   (one command line)
 #include <benchmark/benchmark.h>
 
 #include "walkgen/control/pattern_targets.hpp"
-#include "walkgen/simulation/humanoid_loop.hpp"
+#include "walkgen/simulation/simulated_tasks.hpp"
+#include "walkgen/yaml/robot_description_loader.hpp"
 
 namespace {
 
@@ -57,6 +61,43 @@ void BM_ClosedLoopTick(benchmark::State& state) {
   report(state, settings.t);
 }
 BENCHMARK(BM_ClosedLoopTick)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The Unitree G1 (torque-driven): NMPC + interpolation + IK + joint controller + MuJoCo, per
+// tick (0.1 s simulated).
+void BM_ClosedLoopTickG1(benchmark::State& state) {
+  const walkgen::RobotDescription g1 = walkgen::find_robot_description("unitree_g1");
+  walkgen::MujocoRobot robot(walkgen::mujoco_robot_settings(g1));
+  const walkgen::KinematicTree<double> g1_tree = walkgen::robot_kinematic_tree(g1);
+  walkgen::CeresInverseKinematics<> ik(g1_tree, walkgen::ceres_ik_settings(g1));
+  walkgen::RobotLoop loop(g1.walking, robot, ik, walkgen::loop_settings(g1));
+  const auto start = [&] {
+    return loop.start().status == walkgen::LoopStatus::ok &&
+           loop.set_command({0.1, 0.0, 0.0}) == walkgen::CommandStatus::accepted;
+  };
+  if (!start()) {
+    state.SkipWithError("start failed");
+    return;
+  }
+  long ticks = 0;
+  for (auto _ : state) {
+    if (loop.tick().status != walkgen::LoopStatus::ok) {
+      state.SkipWithError("the robot stopped");
+      break;
+    }
+    if (++ticks % 600 == 0) {  // a minute walked: start again, untimed
+      state.PauseTiming();
+      robot.reset();
+      const bool started = start();
+      state.ResumeTiming();
+      if (!started) {
+        state.SkipWithError("start failed");
+        break;
+      }
+    }
+  }
+  report(state, g1.walking.t);
+}
+BENCHMARK(BM_ClosedLoopTickG1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // MuJoCo alone: 0.4 s of physics with fixed servo targets (the standing robot).
 void BM_PhysicsOnly(benchmark::State& state) {
