@@ -27,18 +27,13 @@ void report(benchmark::State& state, double simulated_per_iteration) {
       simulated_per_iteration * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// NMPC + interpolation + IK + MuJoCo, per tick (0.4 s simulated).
-void BM_ClosedLoopTick(benchmark::State& state) {
-  walkgen::MujocoRobot robot;
-  walkgen::HumanoidIk ik(tree());
-  const walkgen::WalkingSettings<double> settings = walkgen::walkgen_humanoid_description().walking;
-  walkgen::SimLoop loop(settings, robot, ik);
-  if (loop.start().status != walkgen::LoopStatus::ok) {
+/// One tick of `loop` per iteration. `start()` starts the walk and sets its command; it runs
+/// again, untimed, every `restart_every` ticks (from the robot's reset).
+template <typename Loop, typename Start>
+void tick_loop(benchmark::State& state, walkgen::MujocoRobot& robot, Loop& loop, Start start,
+               long restart_every) {
+  if (!start()) {
     state.SkipWithError("start failed");
-    return;
-  }
-  if (loop.set_command({0.03, 0.0, 0.05}) != walkgen::CommandStatus::accepted) {
-    state.SkipWithError("command rejected");
     return;
   }
   long ticks = 0;
@@ -47,10 +42,10 @@ void BM_ClosedLoopTick(benchmark::State& state) {
       state.SkipWithError("the robot stopped");
       break;
     }
-    if (++ticks % 1500 == 0) {  // 10 minutes walked: start again, untimed
+    if (++ticks % restart_every == 0) {
       state.PauseTiming();
       robot.reset();
-      const bool started = loop.start().status == walkgen::LoopStatus::ok;
+      const bool started = start();
       state.ResumeTiming();
       if (!started) {
         state.SkipWithError("start failed");
@@ -58,6 +53,21 @@ void BM_ClosedLoopTick(benchmark::State& state) {
       }
     }
   }
+}
+
+// NMPC + interpolation + IK + MuJoCo, per tick (0.4 s simulated).
+void BM_ClosedLoopTick(benchmark::State& state) {
+  walkgen::MujocoRobot robot;
+  walkgen::HumanoidIk ik(tree());
+  const walkgen::WalkingSettings<double> settings = walkgen::walkgen_humanoid_description().walking;
+  walkgen::SimLoop loop(settings, robot, ik);
+  tick_loop(
+      state, robot, loop,
+      [&] {
+        return loop.start().status == walkgen::LoopStatus::ok &&
+               loop.set_command({0.03, 0.0, 0.05}) == walkgen::CommandStatus::accepted;
+      },
+      1500);  // 10 minutes walked
   report(state, settings.t);
 }
 BENCHMARK(BM_ClosedLoopTick)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -70,31 +80,13 @@ void BM_ClosedLoopTickG1(benchmark::State& state) {
   const walkgen::KinematicTree<double> g1_tree = walkgen::robot_kinematic_tree(g1);
   walkgen::CeresInverseKinematics<> ik(g1_tree, walkgen::ceres_ik_settings(g1));
   walkgen::RobotLoop loop(g1.walking, robot, ik, walkgen::loop_settings(g1));
-  const auto start = [&] {
-    return loop.start().status == walkgen::LoopStatus::ok &&
-           loop.set_command({0.1, 0.0, 0.0}) == walkgen::CommandStatus::accepted;
-  };
-  if (!start()) {
-    state.SkipWithError("start failed");
-    return;
-  }
-  long ticks = 0;
-  for (auto _ : state) {
-    if (loop.tick().status != walkgen::LoopStatus::ok) {
-      state.SkipWithError("the robot stopped");
-      break;
-    }
-    if (++ticks % 600 == 0) {  // a minute walked: start again, untimed
-      state.PauseTiming();
-      robot.reset();
-      const bool started = start();
-      state.ResumeTiming();
-      if (!started) {
-        state.SkipWithError("start failed");
-        break;
-      }
-    }
-  }
+  tick_loop(
+      state, robot, loop,
+      [&] {
+        return loop.start().status == walkgen::LoopStatus::ok &&
+               loop.set_command({0.1, 0.0, 0.0}) == walkgen::CommandStatus::accepted;
+      },
+      600);  // a minute walked
   report(state, g1.walking.t);
 }
 BENCHMARK(BM_ClosedLoopTickG1)->Unit(benchmark::kMillisecond)->UseRealTime();
