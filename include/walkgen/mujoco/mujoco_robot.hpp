@@ -207,7 +207,8 @@ enum class JointFeedforward : std::uint8_t {
   /// (Robot::set_balance_reference): the CoM acceleration c̈ = c̈_ref + balance_kp (c_ref − c) +
   /// balance_kd (ċ_ref − ċ) in the plane, the feet pushing with m (g + c̈) at the ZMP of that
   /// acceleration, c − c_z c̈ / g. c and ċ relative to the support sole: what the IMU and the
-  /// joint encoders tell a real robot. Without a reference: weight.
+  /// joint encoders tell a real robot. Without a reference (none since the start or reset()):
+  /// weight.
   balance,
 };
 
@@ -536,6 +537,7 @@ class MujocoRobot final : public Robot {
 
   void reset() override {
     push_from_ = push_to_ = 0.0;
+    balance_ = BalanceReference();  // a new walk hands its own
     mj_resetData(model_.get(), data_.get());
     if (keyframe_ >= 0) {
       mj_resetDataKeyframe(model_.get(), data_.get(), keyframe_);
