@@ -1,12 +1,15 @@
 // Keyboard teleoperation of the simulated robot in the terminal (thesis §8, appendix B.3.1): the
 // keys change the velocity command (v_x, v_y, ω_z) within the NMPC's limits, the closed loop of
-// figure 6.1 walks the humanoid in MuJoCo at real time (or faster), the screen shows command and
-// state, and every NMPC tick is recorded with its command and timestamps (for behavioural
-// cloning). In a navigation room (thesis §11.1) it records teleoperated demonstrations like
-// examples/record_demonstrations records the scripted expert (§7.1.2, figure 7.2).
+// figure 6.1 walks the robot (walkgen's humanoid, the Unitree G1, any described robot) in MuJoCo at
+// real time (or faster), the screen shows command and state, and every NMPC tick is recorded with
+// its command and timestamps (for behavioural cloning). In a navigation room (thesis §11.1) it
+// records teleoperated demonstrations like examples/record_demonstrations records the scripted
+// expert (§7.1.2, figure 7.2).
 //
-//   teleop [--speed S] [--record FILE] [--max-time T] [--summary FILE]
+//   teleop [--robot R] [--speed S] [--record FILE] [--max-time T] [--summary FILE]
 //          [--room TASK [--seed S] [--demonstrations DIR]]
+//     --robot R     walkgen_humanoid (default) or unitree_g1 (models/R/robot.yaml), or the path of
+//                   a robot description file (docs/robots.md); needs a build with walkgen::yaml
 //     --speed S     simulated seconds per wall-clock second, in (0, 1000] (default 1: real time)
 //     --record FILE CSV: wall_time, sim_time, v_x, v_y, omega, key (default teleop_commands.csv)
 //     --max-time T  stop after T simulated seconds [s], > 0 (default: until q)
@@ -48,6 +51,10 @@
 #include "common/navigation_cli.hpp"
 #include "walkgen/mujoco/navigation_scene.hpp"
 #include "walkgen/simulation/humanoid_loop.hpp"
+#include "walkgen/simulation/simulated_tasks.hpp"
+#ifdef WALKGEN_TELEOP_ROBOT_FILES  // examples/CMakeLists.txt: teleop links walkgen::yaml
+#include "walkgen/yaml/robot_description_loader.hpp"
+#endif
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS  // examples/CMakeLists.txt: teleop links walkgen::opencv
 #include "walkgen/navigation/navigation_episode.hpp"
 #endif
@@ -168,14 +175,18 @@ void parse_keys(const std::string& in, OnKey on_key) {
 
 int main(int argc, char** argv) {
   double speed = 1.0, max_time = std::numeric_limits<double>::infinity();
-  std::string record = "teleop_commands.csv", summary_path, room, demonstrations;
+  std::string record = "teleop_commands.csv", summary_path, room, demonstrations,
+              robot_name = "walkgen_humanoid";
   std::uint32_t seed = 1000;
   const std::vector<std::string> rooms = walkgen_examples::navigation_task_names();
   CLI::App app{
-      "Keyboard teleoperation of the humanoid in MuJoCo, in the terminal (thesis §8, "
+      "Keyboard teleoperation of a robot in MuJoCo, in the terminal (thesis §8, "
       "appendix B.3.1)",
       "teleop"};
   walkgen_examples::cli_defaults(app);
+  app.add_option("--robot", robot_name,
+                 "the robot: walkgen_humanoid or unitree_g1 (models/NAME/robot.yaml), or the "
+                 "path of a robot description file (docs/robots.md)");
   app.add_option("--speed", speed, "simulated s per wall-clock s, in (0, 1000]; 1: real time")
       ->check(walkgen_examples::number_where("in (0, 1000]",
                                              [](double v) { return v > 0.0 && v <= 1000.0; }));
@@ -196,6 +207,23 @@ int main(int argc, char** argv) {
                  "record image, disparity, command per tick into this folder (default: none)")
       ->needs(room_option);
   WALKGEN_CLI_PARSE(app, argc, argv);
+  walkgen::RobotDescription description = walkgen::walkgen_humanoid_description();
+  if (robot_name != description.name) {
+#ifdef WALKGEN_TELEOP_ROBOT_FILES
+    try {
+      description = walkgen::find_robot_description(robot_name);
+    } catch (const walkgen::invalid_argument& e) {
+      std::fprintf(stderr, "teleop: --robot: %s\n", e.what());
+      return 2;
+    }
+#else
+    std::fprintf(stderr,
+                 "teleop: --robot %s: this build reads no robot description files (it lacks "
+                 "walkgen::yaml); only walkgen_humanoid\n",
+                 robot_name.c_str());
+    return 2;
+#endif
+  }
   // The room (--room), and the demonstrations recorded in it (--demonstrations).
   std::optional<walkgen::NavigationScene> scene;
   if (!room.empty()) {
@@ -230,200 +258,225 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
 
-  const walkgen::KinematicTree<double> tree = walkgen::humanoid_tree();
-  const walkgen::RobotDescription humanoid = walkgen::walkgen_humanoid_description();
-  walkgen::MujocoRobotSettings robot_settings = walkgen::mujoco_robot_settings(humanoid);
-  walkgen::WalkingSettings<double> settings = humanoid.walking;
+  walkgen::MujocoRobotSettings robot_settings = walkgen::mujoco_robot_settings(description);
+  walkgen::WalkingSettings<double> settings = description.walking;
   if (scene) {
     robot_settings.objects = scene->objects();
     settings.obstacles =
         scene->obstacles_at(0.0, walkgen::kNavigationObstacleMargin);  // chairs and person
   }
-  walkgen::MujocoRobot robot(robot_settings);
-  walkgen::HumanoidIk ik(tree);
-  walkgen::SimLoop loop(settings, robot, ik);
-  std::ofstream csv(record);
-  if (!csv) {
-    std::fprintf(stderr, "teleop: cannot write '%s'\n", record.c_str());
+  if (!demonstrations.empty() && description.cameras[0].empty()) {
+    std::fprintf(stderr, "teleop: --demonstrations: the robot %s has no chest cameras\n",
+                 description.name.c_str());
     return 2;
   }
-  csv << "wall_time,sim_time,v_x,v_y,omega,key\n";
-  csv.precision(6);
-  std::printf("teleop: standing up (moving the CoM over the left foot)...\n");
-  if (loop.start().status != walkgen::LoopStatus::ok) {
-    std::fprintf(stderr, "teleop: %s\n", loop.last_tick().message.c_str());
-    return 1;
+  std::optional<walkgen::MujocoRobot> robot_storage;
+  try {
+    robot_storage.emplace(robot_settings);
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "teleop: --robot %s: %s\n", robot_name.c_str(), e.what());
+    return 2;
   }
-#ifdef WALKGEN_TELEOP_DEMONSTRATIONS
-  if (recorder) {
-    const walkgen::StereoImages& first = robot.render_cameras();
-    if (first.status != walkgen::RenderStatus::ok) {
-      std::fprintf(stderr, "teleop: cannot render the chest cameras: %s\n", first.message.c_str());
+  walkgen::MujocoRobot& robot = *robot_storage;
+  // The plan's frame is MuJoCo's world (the humanoid's settings stay as they are).
+  settings = walkgen::settings_where_standing(settings, robot);
+  // The rest walks with the robot's IK (fixed-size for a 15-joint robot, else sized at run time).
+  const auto walk = [&](auto& ik) -> int {
+    walkgen::WalkingLoop<16, std::decay_t<decltype(ik)>> loop(settings, robot, ik,
+                                                              walkgen::loop_settings(description));
+    std::ofstream csv(record);
+    if (!csv) {
+      std::fprintf(stderr, "teleop: cannot write '%s'\n", record.c_str());
+      return 2;
+    }
+    csv << "wall_time,sim_time,v_x,v_y,omega,key\n";
+    csv.precision(6);
+    std::printf("teleop: standing up (moving the CoM over the left foot)...\n");
+    if (loop.start().status != walkgen::LoopStatus::ok) {
+      std::fprintf(stderr, "teleop: %s\n", loop.last_tick().message.c_str());
       return 1;
     }
-    stereo.emplace(walkgen::make_stereo_depth(first));
-  }
-#endif
-  const Eigen::Vector3d limit = 0.95 * settings.max_command;
-  const Eigen::Vector3d step(0.005, 0.0015, 0.015);
-  Eigen::Vector3d command = Eigen::Vector3d::Zero();
-  const double t0 = robot.output().time;
-  const auto wall0 = std::chrono::steady_clock::now();
-  auto wall = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  };
-  RawTerminal terminal;
-  bool quit = false;
-  long rows = 0;
-  double zmp_sum = 0.0;
-  long zmp_n = 0;
-  walkgen::LoopStatus status = walkgen::LoopStatus::ok;
-  std::string key_this_tick, stop_message;
-  long frames = 0;
-  bool reached = false;
-  double target_distance = scene ? (walkgen::true_com(robot) - scene->target).norm() : 0.0;
-  while (!quit && g_stop == 0 && robot.output().time - t0 < max_time) {
-    // Keys until the wall clock has caught up with the simulation.
-    const double sim = robot.output().time - t0;
-    do {
-      const double wait = sim / speed - wall();
-      parse_keys(read_input(int(std::max(0.0, std::min(wait, 0.02) * 1000.0))), [&](Key k) {
-        switch (k) {
-          case Key::up:
-            command.x() += step.x();
-            break;
-          case Key::down:
-            command.x() -= step.x();
-            break;
-          case Key::left:
-            command.z() += step.z();
-            break;
-          case Key::right:
-            command.z() -= step.z();
-            break;
-          case Key::side_left:
-            command.y() += step.y();
-            break;
-          case Key::side_right:
-            command.y() -= step.y();
-            break;
-          case Key::stop:
-            command.setZero();
-            break;
-          case Key::quit:
-            quit = true;
-            break;
-          default:
-            break;
-        }
-        command = command.cwiseMax(-limit).cwiseMin(limit);  // within the NMPC's limits
-        for (int i = 0; i < 3; ++i) {                        // no drift from repeated ± steps
-          if (std::abs(command[i]) < 1e-9) command[i] = 0.0;
-        }
-        key_this_tick += std::string(key_this_tick.empty() ? "" : " ") + key_name(k);
-      });
-    } while (!quit && g_stop == 0 && wall() < sim / speed);
-    if (quit) break;
-    const double t = robot.output().time - t0;
-    if (scene) walkgen::move_person(*scene, t, robot, loop.mpc());  // the person walks on
 #ifdef WALKGEN_TELEOP_DEMONSTRATIONS
-    if (recorder) {  // what the robot sees now, and the command it executes from now
-      const walkgen::StereoImages& images = robot.render_cameras();
-      if (images.status != walkgen::RenderStatus::ok) {
-        stop_message = "cannot render the chest cameras: " + images.message;
-        break;
+    if (recorder) {
+      const walkgen::StereoImages& first = robot.render_cameras();
+      if (first.status != walkgen::RenderStatus::ok) {
+        std::fprintf(stderr, "teleop: cannot render the chest cameras: %s\n",
+                     first.message.c_str());
+        return 1;
       }
-      const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
-                         const_cast<std::uint8_t*>(images.left.rgb.data()));
-      const cv::Mat right(images.right.height, images.right.width, CV_8UC3,
-                          const_cast<std::uint8_t*>(images.right.rgb.data()));
-      try {
-        recorder->record(t, images.left, stereo->compute(left, right).disparity, command);
-      } catch (const walkgen::invalid_argument& e) {
-        stop_message = std::string("recording failed: ") + e.what();
-        break;
-      }
-      frames = recorder->samples();
+      stereo.emplace(walkgen::make_stereo_depth(first));
     }
 #endif
-    const walkgen::CommandStatus accepted = loop.set_command(command);
-    if (accepted != walkgen::CommandStatus::accepted) {  // cannot be: clamped to 95 % above
-      stop_message = std::string("the NMPC did not take the command as given: ") +
-                     walkgen::to_string(accepted);
-      break;
+    const walkgen::PlanarPose start_pose = walkgen::walking_pose(loop.mpc().state());
+    const Eigen::Vector3d limit = 0.95 * settings.max_command;
+    const Eigen::Vector3d step(0.005, 0.0015, 0.015);
+    Eigen::Vector3d command = Eigen::Vector3d::Zero();
+    const double t0 = robot.output().time;
+    const auto wall0 = std::chrono::steady_clock::now();
+    auto wall = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    };
+    RawTerminal terminal;
+    bool quit = false;
+    long rows = 0;
+    double zmp_sum = 0.0;
+    long zmp_n = 0;
+    walkgen::LoopStatus status = walkgen::LoopStatus::ok;
+    std::string key_this_tick, stop_message;
+    long frames = 0;
+    bool reached = false;
+    double target_distance = scene ? (walkgen::true_com(robot) - scene->target).norm() : 0.0;
+    while (!quit && g_stop == 0 && robot.output().time - t0 < max_time) {
+      // Keys until the wall clock has caught up with the simulation.
+      const double sim = robot.output().time - t0;
+      do {
+        const double wait = sim / speed - wall();
+        parse_keys(read_input(int(std::max(0.0, std::min(wait, 0.02) * 1000.0))), [&](Key k) {
+          switch (k) {
+            case Key::up:
+              command.x() += step.x();
+              break;
+            case Key::down:
+              command.x() -= step.x();
+              break;
+            case Key::left:
+              command.z() += step.z();
+              break;
+            case Key::right:
+              command.z() -= step.z();
+              break;
+            case Key::side_left:
+              command.y() += step.y();
+              break;
+            case Key::side_right:
+              command.y() -= step.y();
+              break;
+            case Key::stop:
+              command.setZero();
+              break;
+            case Key::quit:
+              quit = true;
+              break;
+            default:
+              break;
+          }
+          command = command.cwiseMax(-limit).cwiseMin(limit);  // within the NMPC's limits
+          for (int i = 0; i < 3; ++i) {                        // no drift from repeated ± steps
+            if (std::abs(command[i]) < 1e-9) command[i] = 0.0;
+          }
+          key_this_tick += std::string(key_this_tick.empty() ? "" : " ") + key_name(k);
+        });
+      } while (!quit && g_stop == 0 && wall() < sim / speed);
+      if (quit) break;
+      const double t = robot.output().time - t0;
+      if (scene) walkgen::move_person(*scene, t, robot, loop.mpc());  // the person walks on
+#ifdef WALKGEN_TELEOP_DEMONSTRATIONS
+      if (recorder) {  // what the robot sees now, and the command it executes from now
+        const walkgen::StereoImages& images = robot.render_cameras();
+        if (images.status != walkgen::RenderStatus::ok) {
+          stop_message = "cannot render the chest cameras: " + images.message;
+          break;
+        }
+        const cv::Mat left(images.left.height, images.left.width, CV_8UC3,
+                           const_cast<std::uint8_t*>(images.left.rgb.data()));
+        const cv::Mat right(images.right.height, images.right.width, CV_8UC3,
+                            const_cast<std::uint8_t*>(images.right.rgb.data()));
+        try {
+          recorder->record(t, images.left, stereo->compute(left, right).disparity, command);
+        } catch (const walkgen::invalid_argument& e) {
+          stop_message = std::string("recording failed: ") + e.what();
+          break;
+        }
+        frames = recorder->samples();
+      }
+#endif
+      const walkgen::CommandStatus accepted = loop.set_command(command);
+      if (accepted != walkgen::CommandStatus::accepted) {  // cannot be: clamped to 95 % above
+        stop_message = std::string("the NMPC did not take the command as given: ") +
+                       walkgen::to_string(accepted);
+        break;
+      }
+      const walkgen::LoopTick& tick = loop.tick();
+      status = tick.status;
+      for (const auto& s : loop.samples()) {
+        if (!s.zmp.valid) continue;
+        zmp_sum += std::hypot(s.zmp.zmp_W.x() - s.plan.zmp_x, s.zmp.zmp_W.y() - s.plan.zmp_y);
+        ++zmp_n;
+      }
+      csv << wall() << ',' << robot.output().time - t0 << ',' << command.x() << ',' << command.y()
+          << ',' << command.z() << ',' << key_this_tick << '\n';
+      ++rows;
+      key_this_tick.clear();
+      const auto& st = loop.mpc().state();
+      const walkgen::PlanarPose pose = walkgen::walking_pose(st);
+      if (scene) {
+        target_distance = (walkgen::true_com(robot) - scene->target).norm();
+        reached = target_distance <= kRoomReachDistance;
+      }
+      // The screen: home, clear, then the panel.
+      std::printf(
+          "\x1b[H\x1b[2J"
+          "walkgen teleop: %s in MuJoCo (NMPC + IK closed loop), %.0fx real time\r\n"
+          "  Up/w Down/s: v_x +-%.3f m/s   Left/a Right/d: omega +-%.3f rad/s\r\n"
+          "  z/c: v_y +-%.4f m/s   space: stop   q: quit\r\n\r\n"
+          "command   v_x %+.3f m/s   v_y %+.4f m/s   omega %+.3f rad/s   (limits %.3f %.4f "
+          "%.3f)\r\n"
+          "time      %.1f s simulated, %.1f s wall\r\n"
+          "robot     x %+.3f m   y %+.3f m   heading %+.3f rad   base height %.3f m\r\n"
+          "balance   NMPC vs measured ZMP %.2f cm (mean)   status %s   QP %s\r\n"
+          "recorded  %ld ticks to %s\r\n",
+          description.name.c_str(), speed, step.x(), step.z(), step.y(), command.x(), command.y(),
+          command.z(), limit.x(), limit.y(), limit.z(), robot.output().time - t0, wall(), pose.x,
+          pose.y, pose.yaw, robot.output().base_height,
+          zmp_n > 0 ? 100.0 * zmp_sum / double(zmp_n) : 0.0, walkgen::to_string(status),
+          walkgen::to_string(tick.mpc), rows, record.c_str());
+      if (scene) {
+        std::printf("room      %s, seed %u: target %.2f m from the CoM (reached within %.1f m)\r\n",
+                    walkgen::to_string(scene->task), seed, target_distance, kRoomReachDistance);
+      }
+      if (!demonstrations.empty()) {
+        std::printf("demos     %ld frames to %s/index.txt\r\n", frames, demonstrations.c_str());
+      }
+      std::fflush(stdout);
+      if (status == walkgen::LoopStatus::fallen || status == walkgen::LoopStatus::diverged) break;
+      if (reached) break;
     }
-    const walkgen::LoopTick& tick = loop.tick();
-    status = tick.status;
-    for (const auto& s : loop.samples()) {
-      if (!s.zmp.valid) continue;
-      zmp_sum += std::hypot(s.zmp.zmp_W.x() - s.plan.zmp_x, s.zmp.zmp_W.y() - s.plan.zmp_y);
-      ++zmp_n;
-    }
-    csv << wall() << ',' << robot.output().time - t0 << ',' << command.x() << ',' << command.y()
-        << ',' << command.z() << ',' << key_this_tick << '\n';
-    ++rows;
-    key_this_tick.clear();
-    const auto& st = loop.mpc().state();
-    const walkgen::PlanarPose pose = walkgen::walking_pose(st);
-    if (scene) {
-      target_distance = (walkgen::true_com(robot) - scene->target).norm();
-      reached = target_distance <= kRoomReachDistance;
-    }
-    // The screen: home, clear, then the panel.
-    std::printf(
-        "\x1b[H\x1b[2J"
-        "walkgen teleop: the humanoid in MuJoCo (NMPC + IK closed loop), %.0fx real time\r\n"
-        "  Up/w Down/s: v_x +-%.3f m/s   Left/a Right/d: omega +-%.3f rad/s\r\n"
-        "  z/c: v_y +-%.4f m/s   space: stop   q: quit\r\n\r\n"
-        "command   v_x %+.3f m/s   v_y %+.4f m/s   omega %+.3f rad/s   (limits %.3f %.4f %.3f)\r\n"
-        "time      %.1f s simulated, %.1f s wall\r\n"
-        "robot     x %+.3f m   y %+.3f m   heading %+.3f rad   base height %.3f m\r\n"
-        "balance   NMPC vs measured ZMP %.2f cm (mean)   status %s   QP %s\r\n"
-        "recorded  %ld ticks to %s\r\n",
-        speed, step.x(), step.z(), step.y(), command.x(), command.y(), command.z(), limit.x(),
-        limit.y(), limit.z(), robot.output().time - t0, wall(), pose.x, pose.y, pose.yaw,
-        robot.output().base_height, zmp_n > 0 ? 100.0 * zmp_sum / double(zmp_n) : 0.0,
-        walkgen::to_string(status), walkgen::to_string(tick.mpc), rows, record.c_str());
-    if (scene) {
-      std::printf("room      %s, seed %u: target %.2f m from the CoM (reached within %.1f m)\r\n",
-                  walkgen::to_string(scene->task), seed, target_distance, kRoomReachDistance);
+    if (reached) {
+      std::printf("\r\nteleop: reached the target: the true CoM is %.2f m from it\r\n",
+                  target_distance);
+    } else if (!stop_message.empty()) {
+      std::fprintf(stderr, "\r\nteleop: %s\r\n", stop_message.c_str());
     }
     if (!demonstrations.empty()) {
-      std::printf("demos     %ld frames to %s/index.txt\r\n", frames, demonstrations.c_str());
+      std::printf("teleop: %ld demonstration frames in %s/index.txt\r\n", frames,
+                  demonstrations.c_str());
     }
-    std::fflush(stdout);
-    if (status == walkgen::LoopStatus::fallen || status == walkgen::LoopStatus::diverged) break;
-    if (reached) break;
-  }
-  if (reached) {
-    std::printf("\r\nteleop: reached the target: the true CoM is %.2f m from it\r\n",
-                target_distance);
-  } else if (!stop_message.empty()) {
-    std::fprintf(stderr, "\r\nteleop: %s\r\n", stop_message.c_str());
-  }
-  if (!demonstrations.empty()) {
-    std::printf("teleop: %ld demonstration frames in %s/index.txt\r\n", frames,
-                demonstrations.c_str());
-  }
-  csv.flush();
-  const auto& st = loop.mpc().state();
-  const walkgen::PlanarPose pose = walkgen::walking_pose(st);
-  const double walked = std::hypot(pose.x, pose.y);
-  std::printf("\r\nteleop: %s after %.1f s simulated; %.2f m from the start; %ld ticks in %s\r\n",
-              walkgen::to_string(status), robot.output().time - t0, walked, rows, record.c_str());
-  if (!summary_path.empty()) {
-    std::ofstream summary(summary_path);
-    summary << "status=" << walkgen::to_string(status) << "\nsim_time=" << robot.output().time - t0
-            << "\nx=" << pose.x << "\ny=" << pose.y << "\nheading=" << pose.yaw << "\nrows=" << rows
-            << "\n";
-    if (scene) {
-      summary << "room=" << walkgen::to_string(scene->task) << "\nseed=" << seed
-              << "\ntarget_distance=" << target_distance << "\nreached=" << (reached ? 1 : 0)
-              << "\nframes=" << frames << "\n";
+    csv.flush();
+    const auto& st = loop.mpc().state();
+    const walkgen::PlanarPose pose = walkgen::walking_pose(st);
+    const double walked = std::hypot(pose.x - start_pose.x, pose.y - start_pose.y);
+    std::printf("\r\nteleop: %s after %.1f s simulated; %.2f m from the start; %ld ticks in %s\r\n",
+                walkgen::to_string(status), robot.output().time - t0, walked, rows, record.c_str());
+    if (!summary_path.empty()) {
+      std::ofstream summary(summary_path);
+      summary << "status=" << walkgen::to_string(status)
+              << "\nsim_time=" << robot.output().time - t0 << "\nx=" << pose.x << "\ny=" << pose.y
+              << "\nheading=" << pose.yaw << "\nrows=" << rows << "\n";
+      if (scene) {
+        summary << "room=" << walkgen::to_string(scene->task) << "\nseed=" << seed
+                << "\ntarget_distance=" << target_distance << "\nreached=" << (reached ? 1 : 0)
+                << "\nframes=" << frames << "\n";
+      }
     }
+    const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed ||
+                    status == walkgen::LoopStatus::not_converged ||
+                    status == walkgen::LoopStatus::relaxed;
+    return ok && csv.good() && stop_message.empty() ? 0 : 1;
+  };
+  try {
+    return walkgen::with_robot_ik(description, walk);
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "teleop: --robot %s: %s\n", robot_name.c_str(), e.what());
+    return 2;
   }
-  const bool ok = status == walkgen::LoopStatus::ok || status == walkgen::LoopStatus::qp_failed ||
-                  status == walkgen::LoopStatus::not_converged ||
-                  status == walkgen::LoopStatus::relaxed;
-  return ok && csv.good() && stop_message.empty() ? 0 : 1;
 }

@@ -64,8 +64,11 @@ namespace {
 constexpr int kStripFrames = 6;
 /// The camera follows the true CoM from behind on the right, looking down enough (25° with
 /// MuJoCo's vertical field of view of 45°) that the frame holds floor up to its top edge: above
-/// the horizon MuJoCo draws nothing (the model has no sky), which left a black band.
+/// the horizon MuJoCo draws nothing (the model has no sky), which left a black band. Distance
+/// and aim are walkgen's humanoid's, scaled by the robot's CoM height against its (the G1 is
+/// 1.4 times its size).
 constexpr double kCameraDistance = 2.0;  ///< [m] from the point 0.3 m above the CoM's ground point
+constexpr double kCameraAim = 0.3;       ///< [m] that point's height
 constexpr double kCameraAzimuth = 30.0;  ///< [deg]
 constexpr double kCameraElevation = -25.0;  ///< [deg]
 
@@ -394,6 +397,7 @@ int main(int argc, char** argv) {
     double render_seconds = 0.0, pipe_seconds = 0.0;  // wall time of the frames [s]
     double next_report = 10.0;
     walkgen::CameraImage image;
+    const double size = robot.walking.com_z / walkgen::walkgen_humanoid_description().walking.com_z;
     walkgen::TaskResult result;
     try {
       result = walkgen::run_task(
@@ -412,9 +416,9 @@ int main(int argc, char** argv) {
             using Clock = std::chrono::steady_clock;
             const auto start = Clock::now();
             const Eigen::Vector2d c = walkgen::true_com(sim);
-            if (!sim.render_view(Eigen::Vector3d(c.x(), c.y(), 0.3), kCameraDistance,
-                                 kCameraAzimuth, kCameraElevation, film.width, film.height,
-                                 image)) {
+            if (!sim.render_view(Eigen::Vector3d(c.x(), c.y(), kCameraAim * size),
+                                 kCameraDistance * size, kCameraAzimuth, kCameraElevation,
+                                 film.width, film.height, image)) {
               std::printf("  no video: %s\n", sim.render_cameras().message.c_str());
               filming = false;
               return;

@@ -84,7 +84,7 @@ def plot_task(directory, task):
         ax = fig.add_subplot(grid[row, 3:])
         ax.plot(d["time"], d["zmp_plan_" + axis], lw=1.0, label="NMPC ZMP")
         measured = np.where(valid, d["zmp_measured_" + axis], np.nan)
-        ax.plot(d["time"], measured, lw=0.7, alpha=0.8, label="measured ZMP (FT sensors)")
+        ax.plot(d["time"], measured, lw=0.7, alpha=0.8, label="measured ZMP (foot forces)")
         ax.set_ylabel("ZMP %s [m]" % axis)
         if row == 0:
             distance = np.hypot(d["zmp_measured_x"] - d["zmp_plan_x"],

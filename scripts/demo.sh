@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
-# The README's demo (release preset): the humanoid walks in MuJoCo. The closed loop of thesis
-# figure 6.1 (NMPC -> interpolation -> Ceres IK -> MuJoCo, CoM feedback, ZMP from the ankle
-# sensors) runs the four test tasks of thesis §9.2 against a target object (straight 2 m, a
-# curved walk to a target on the left, a chair on the way, the environmental scan with the
-# target behind the robot) and films them; then the six HRP-2 pattern scenarios of §9.1 and the
-# walking QP sequence of §2.2.
+# The README's demo (release preset): a humanoid walks in MuJoCo, by default the Unitree G1
+# (torque motors; models/unitree_g1), or walkgen's own with --robot walkgen_humanoid. The closed
+# loop of thesis figure 6.1 (NMPC -> interpolation -> Ceres IK -> joint controller -> MuJoCo,
+# ZMP measured at the feet) runs the four test tasks of thesis §9.2 against a target object
+# (straight 2 m, a curved walk to a target on the left, a chair on the way, the environmental
+# scan with the target behind the robot) and films them; then the six HRP-2 pattern scenarios of
+# §9.1 and the walking QP sequence of §2.2.
 #
-#   bash scripts/demo.sh [--quick] [--out DIR] [TASK...] [walking_simulation options]
+#   bash scripts/demo.sh [--quick] [--robot R] [--out DIR] [TASK...] [walking_simulation options]
 #
 #   --quick    a short check of the whole chain (about a minute once built): the straight task
 #              shortened to 0.5 m, no video, plots on; one pattern scenario. The ctest
 #              "readme_demo" runs it.
+#   --robot R  unitree_g1 (default) or walkgen_humanoid (models/R/robot.yaml), or the path of a
+#              robot description file (docs/robots.md)
 #   --out DIR  where the results go (default build/release/example_output, or .../demo_quick)
 #   --no-setup skip scripts/setup.sh (the packages are installed; readme_demo uses it)
 #   TASK...    straight curved obstacle scan (default: all four); other arguments go to
@@ -22,12 +25,24 @@ root="$(pwd)"
 
 quick=0
 setup=1
+robot="unitree_g1"
 out=""
 sim_args=()
 while [ "$#" -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
     --no-setup) setup=0 ;;
+    --robot)
+      if [ "$#" -lt 2 ]; then
+        echo "demo: --robot needs a robot name or description file" >&2
+        exit 2
+      fi
+      case "$2" in
+        */* | *.yaml | *.yml) robot="$(cd "${caller}" && realpath -m -- "$2")" ;;  # a file
+        *) robot="$2" ;;
+      esac
+      shift
+      ;;
     --out)
       if [ "$#" -lt 2 ]; then
         echo "demo: --out needs a folder" >&2
@@ -40,7 +55,7 @@ while [ "$#" -gt 0 ]; do
       shift
       ;;
     -h | --help)
-      sed -n '2,17p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+      sed -n '2,21p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
       exit 0
       ;;
     *) sim_args+=("$1") ;;
@@ -67,13 +82,13 @@ export EGL_PLATFORM="${EGL_PLATFORM:-surfaceless}"
 
 start=${SECONDS}
 if [ "${quick}" -eq 1 ]; then
-  echo "demo (quick): walking_simulation straight --scale 0.25 --out ${sim} ${sim_args[*]}"
-  "${bin}/walking_simulation" straight --scale 0.25 --out "${sim}" "${sim_args[@]}"
+  echo "demo (quick): walking_simulation straight --scale 0.25 --robot ${robot} --out ${sim} ${sim_args[*]}"
+  "${bin}/walking_simulation" straight --scale 0.25 --robot "${robot}" --out "${sim}" "${sim_args[@]}"
   echo "demo (quick): walking_scenarios straight --out ${out}"
   "${bin}/walking_scenarios" straight --out "${out}"
 else
-  echo "demo: walking_simulation --video --out ${sim} ${sim_args[*]}"
-  "${bin}/walking_simulation" --video --out "${sim}" "${sim_args[@]}"
+  echo "demo: walking_simulation --video --robot ${robot} --out ${sim} ${sim_args[*]}"
+  "${bin}/walking_simulation" --video --robot "${robot}" --out "${sim}" "${sim_args[@]}"
   echo "demo: walking_scenarios all --out ${out}"
   "${bin}/walking_scenarios" all --out "${out}"
   echo "demo: qp_walking_sequence --quiet (in ${out})"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ctest "readme_demo": the README's first command in its quick mode, `bash scripts/demo.sh
 # --quick` (with --no-setup: a test installs no packages), which configures and builds the
-# release tree (up to date when ctest runs) and runs the programs. Passes when the demo exits 0, every file it
+# release tree (up to date when ctest runs) and runs the programs. Passes when the demo exits 0,
+# walked the Unitree G1 (its default robot), every file it
 # promises exists and is not empty (the task's CSV, PNG, scene and summary; the scenario's PNG),
 # and the robot walked toward the target (its true CoM ended at least 0.1 m closer to the target
 # than it started, and the summary says "reached").
@@ -11,7 +12,13 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${1:-${root}/build/release/example_output/readme_demo}"
 rm -rf "${out}"
 
-bash "${root}/scripts/demo.sh" --quick --no-setup --out "${out}"
+mkdir -p "${out}"
+bash "${root}/scripts/demo.sh" --quick --no-setup --out "${out}" 2>&1 | tee "${out}/demo.log"
+# The README promises the Unitree G1 by default.
+if ! grep -q "^straight (unitree_g1):" "${out}/demo.log"; then
+  echo "readme_demo: the demo did not walk the Unitree G1 (no 'straight (unitree_g1):' line)" >&2
+  exit 1
+fi
 
 sim="${out}/simulation"
 missing=0

@@ -119,3 +119,21 @@ def test_the_camera_finds_the_chair_of_the_obstacle_room():
         assert abs(nearest[2] - chair[2]) < 0.1
     finally:
         assert d.stop() == 0
+
+
+def test_the_unitree_g1_walks_forward_from_the_page():
+    """--robot unitree_g1: the torque-driven G1 (23 joints, no chest cameras) stands, walks
+    forward on a command, and the camera endpoint says why it has no image."""
+    from conftest import Dashboard
+    d = Dashboard(["--robot", "unitree_g1", "--speed", "4"])
+    try:
+        start = d.wait(lambda s: s.get("ticks", 0) >= 1, timeout=60)
+        assert start["status"] == "ok" and start["max_command"][0] > 0.1
+        assert d.request("/api/command", json.dumps({"vx": 0.1}))[0] == 200
+        walked = d.wait(lambda s: s["com"][0] > start["com"][0] + 0.1, timeout=90)
+        assert walked["status"] == "ok" and walked["command"] == [0.1, 0.0, 0.0]
+        assert abs(walked["heading"]) < 0.2  # forward, not turning away
+        status, body = d.request("/api/camera/rgb.jpg")
+        assert status == 503 and json.loads(body)["message"], body  # no cameras, and why
+    finally:
+        assert d.stop() == 0, d.process.stdout.read()

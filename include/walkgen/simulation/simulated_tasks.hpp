@@ -202,6 +202,39 @@ inline KinematicTree<double> robot_kinematic_tree(const RobotDescription& robot)
 /// time (walkgen's humanoid has SimLoop, with its joint count fixed at compile time).
 using RobotLoop = WalkingLoop<16, CeresInverseKinematics<>>;
 
+/// Calls `walk(ik)` with the Ceres IK of `robot` (ceres_ik_settings(robot)) on its kinematic
+/// tree: HumanoidIk (fixed-size, SimLoop's) for a robot of kHumanoidJoints joints,
+/// CeresInverseKinematics<> (sized at run time, RobotLoop's) otherwise; returns what `walk`
+/// returns. `walk` is generic in the IK's type, e.g. to build a WalkingLoop<16, Ik>.
+/// @throws walkgen::invalid_argument when the robot's models cannot be read or lack a name of
+///   the description.
+template <typename Walk>
+decltype(auto) with_robot_ik(const RobotDescription& robot, Walk&& walk) {
+  const KinematicTree<double> tree = robot_kinematic_tree(robot);
+  if (tree.num_joints() == kHumanoidJoints) {
+    HumanoidIk ik(tree, ceres_ik_settings(robot));
+    return walk(ik);
+  }
+  CeresInverseKinematics<> ik(tree, ceres_ik_settings(robot));
+  return walk(ik);
+}
+
+/// `settings` (a robot's walking settings) moved into MuJoCo's world, where `robot` stands: the
+/// walk starts on the left sole where the model put it, the initial CoM moved with it.
+/// walkgen's humanoid stands exactly at its settings' foot pose; they come back unchanged.
+inline WalkingSettings<double> settings_where_standing(WalkingSettings<double> settings,
+                                                       const MujocoRobot& robot) {
+  const Eigen::Vector2d sole = robot.output().ft[0].pose_W_S.translation().head<2>();
+  const Eigen::Vector2d shift = sole - Eigen::Vector2d(settings.foot_x, settings.foot_y);
+  if (shift.norm() > 1e-6) {
+    settings.foot_x += shift.x();
+    settings.foot_y += shift.y();
+    settings.com_x[0] += shift.x();
+    settings.com_y[0] += shift.y();
+  }
+  return settings;
+}
+
 /// What run_task() shows its caller after every tick: the robot, the generator's state (plan
 /// frame = MuJoCo's world) and the result so far.
 using TaskTickCallback =
@@ -215,18 +248,9 @@ TaskResult run_task_with(const SimTask& task, const RobotDescription& descriptio
                          double settle, const TaskTickCallback& on_tick) {
   TaskResult result;
   MujocoRobot robot(task_robot_settings(task, description));
-  WalkingSettings<double> settings = task_walking_settings(task, description);
-  // The plan's frame is MuJoCo's world: the walk starts on the left sole where the model
-  // stands it (walkgen's humanoid stands it exactly at the settings' foot pose, and keeps its
-  // settings unchanged), the initial CoM moved with it.
-  const Eigen::Vector2d sole = robot.output().ft[0].pose_W_S.translation().head<2>();
-  const Eigen::Vector2d shift = sole - Eigen::Vector2d(settings.foot_x, settings.foot_y);
-  if (shift.norm() > 1e-6) {
-    settings.foot_x += shift.x();
-    settings.foot_y += shift.y();
-    settings.com_x[0] += shift.x();
-    settings.com_y[0] += shift.y();
-  }
+  // The plan's frame is MuJoCo's world.
+  const WalkingSettings<double> settings =
+      settings_where_standing(task_walking_settings(task, description), robot);
   WalkingLoop<16, Ik> loop(settings, robot, ik, loop_settings(description));
   const std::array<Eigen::Vector2d, 4> sole_region = sole_corners(description);
   const LoopTick& started = loop.start();
@@ -310,13 +334,9 @@ TaskResult run_task_with(const SimTask& task, const RobotDescription& descriptio
 ///   the description.
 inline TaskResult run_task(const SimTask& task, const RobotDescription& robot, double settle = 2.0,
                            const TaskTickCallback& on_tick = nullptr) {
-  const KinematicTree<double> tree = robot_kinematic_tree(robot);
-  if (tree.num_joints() == kHumanoidJoints) {
-    HumanoidIk ik(tree, ceres_ik_settings(robot));
+  return with_robot_ik(robot, [&](auto& ik) {
     return detail::run_task_with(task, robot, ik, settle, on_tick);
-  }
-  CeresInverseKinematics<> ik(tree, ceres_ik_settings(robot));
-  return detail::run_task_with(task, robot, ik, settle, on_tick);
+  });
 }
 
 /// run_task() with walkgen's humanoid.
