@@ -1,7 +1,7 @@
 /// @file
-/// walkgen.Simulation: walkgen's humanoid in MuJoCo under the closed loop of thesis figure 6.1
-/// (walkgen/simulation/humanoid_loop.hpp: NMPC, interpolation, Ceres IK, feedback, safety), with
-/// its measurements, the loop's samples and the chest cameras' images as NumPy arrays. Built
+/// walkgen.Simulation: a robot (walkgen's humanoid, the Unitree G1, any described robot) in MuJoCo
+/// under the closed loop of thesis figure 6.1 (NMPC, interpolation, Ceres IK, feedback, safety),
+/// with its measurements, the loop's samples and the chest cameras' images as NumPy arrays. Built
 /// when the package has walkgen::simulation (WALKGEN_PYTHON_HAVE_SIMULATION).
 
 #include <pybind11/numpy.h>
@@ -13,11 +13,13 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "walkgen/simulation/humanoid_loop.hpp"
+#include "walkgen/simulation/simulated_tasks.hpp"
 #include "walkgen/yaml/robot_description_loader.hpp"
 
 namespace walkgen::python {
@@ -48,19 +50,17 @@ py::dict ft_dict(const ForceTorqueReading& r) {
 }
 
 /// The robot, its IK and the loop, built in this order and destroyed in the reverse one (the loop
-/// borrows the other two).
+/// borrows the other two). A robot of kHumanoidJoints joints walks with SimLoop (the fixed-size
+/// IK), any other with RobotLoop (the IK sized at run time), as walkgen::with_robot_ik() picks.
 class Simulation {
  public:
   Simulation(const std::string& robot, const std::vector<CircleObstacle<double>>& obstacles,
              const std::optional<WalkingSettings<double>>& walking, int view_width, int view_height)
       : description_(find_robot_description(robot)) {
-    check_argument(
-        description_.joint_names.size() == kHumanoidJoints && description_.walking.n == 16,
-        "Simulation: robot", "walkgen_humanoid (the closed loop's IK has 15 joints)",
-        "'" + description_.name + "' with " + std::to_string(description_.joint_names.size()) +
-            " joints",
-        "the other robots do not walk in the closed loop yet: issues 23 and 24");
-    tree_ = std::make_unique<KinematicTree<double>>(humanoid_tree(description_));
+    WalkingSettings<double> ws = walking ? *walking : description_.walking;
+    check_argument(ws.n == 16, "Simulation: walking.n", "16 (the closed loop's horizon)",
+                   std::to_string(ws.n));
+    tree_ = std::make_unique<KinematicTree<double>>(robot_kinematic_tree(description_));
     MujocoRobotSettings ms = mujoco_robot_settings(description_);
     ms.view_width = view_width;
     ms.view_height = view_height;
@@ -73,32 +73,56 @@ class Simulation {
       ms.objects.push_back(s);
     }
     robot_ = std::make_unique<MujocoRobot>(ms);
-    ik_ = std::make_unique<HumanoidIk>(*tree_, ceres_ik_settings(description_));
-    WalkingSettings<double> ws = walking ? *walking : description_.walking;
     ws.obstacles = obstacles;
-    loop_ = std::make_unique<SimLoop>(ws, *robot_, *ik_, loop_settings(description_));
+    ws = settings_where_standing(ws, *robot_);  // the plan's frame is MuJoCo's world
+    if (tree_->num_joints() == kHumanoidJoints) {
+      humanoid_ik_ = std::make_unique<HumanoidIk>(*tree_, ceres_ik_settings(description_));
+      humanoid_loop_ =
+          std::make_unique<SimLoop>(ws, *robot_, *humanoid_ik_, loop_settings(description_));
+    } else {
+      ik_ = std::make_unique<CeresInverseKinematics<>>(*tree_, ceres_ik_settings(description_));
+      loop_ = std::make_unique<RobotLoop>(ws, *robot_, *ik_, loop_settings(description_));
+    }
+  }
+
+  /// `f(loop)` with the robot's loop (SimLoop or RobotLoop).
+  template <typename F>
+  decltype(auto) with_loop(F&& f) {
+    return humanoid_loop_ ? f(*humanoid_loop_) : f(*loop_);
+  }
+  template <typename F>
+  decltype(auto) with_loop(F&& f) const {
+    return humanoid_loop_ ? f(std::as_const(*humanoid_loop_)) : f(std::as_const(*loop_));
   }
 
   const LoopTick& start() {
     py::gil_scoped_release release;
-    return loop_->start();
+    return with_loop([](auto& loop) -> const LoopTick& { return loop.start(); });
   }
   const LoopTick& tick() {
     py::gil_scoped_release release;
-    return loop_->tick();
+    return with_loop([](auto& loop) -> const LoopTick& { return loop.tick(); });
   }
   CommandStatus set_command(double vx, double vy, double wz) {
     const Eigen::Vector3d c(vx, vy, wz);
     check_argument(c.allFinite(), "Simulation.set_command", "finite velocities", "NaN or inf");
-    return loop_->set_command(c);
+    return with_loop([&c](auto& loop) { return loop.set_command(c); });
   }
-  LoopMode request_stop() { return loop_->request_stop(); }
-  const SimLoop& loop() const { return *loop_; }
+  LoopMode request_stop() {
+    return with_loop([](auto& loop) { return loop.request_stop(); });
+  }
+  LoopMode mode() const {
+    return with_loop([](const auto& loop) { return loop.mode(); });
+  }
+  WalkingState<double> state() const {
+    return with_loop([](const auto& loop) { return loop.mpc().state(); });
+  }
   MujocoRobot& robot() { return *robot_; }
 
   /// The last tick's samples, one row per command period.
   py::dict samples() const {
-    const auto& s = loop_->samples();
+    const auto& s = with_loop(
+        [](const auto& loop) -> const std::vector<LoopSample>& { return loop.samples(); });
     const auto k = static_cast<Eigen::Index>(s.size());
     Eigen::MatrixXd com_plan(k, 3), zmp_plan(k, 2), zmp_measured(k, 2), com_measured(k, 3);
     Eigen::VectorXd time(k), base_height(k), zmp_valid(k), sensors_ok(k);
@@ -186,8 +210,10 @@ class Simulation {
   RobotDescription description_;
   std::unique_ptr<KinematicTree<double>> tree_;
   std::unique_ptr<MujocoRobot> robot_;
-  std::unique_ptr<HumanoidIk> ik_;
-  std::unique_ptr<SimLoop> loop_;
+  std::unique_ptr<HumanoidIk> humanoid_ik_;  // a robot of kHumanoidJoints joints
+  std::unique_ptr<SimLoop> humanoid_loop_;
+  std::unique_ptr<CeresInverseKinematics<>> ik_;  // any other
+  std::unique_ptr<RobotLoop> loop_;
 };
 
 }  // namespace
@@ -233,8 +259,9 @@ void bind_simulation(py::module_& m) {
       });
 
   py::class_<Simulation>(m, "Simulation",
-                         "walkgen's humanoid in MuJoCo, walking under the closed loop (NMPC, "
-                         "interpolation, Ceres IK, feedback, safe stop).")
+                         "A robot in MuJoCo (walkgen's humanoid, the Unitree G1, any described "
+                         "robot), walking under the closed loop (NMPC, interpolation, Ceres IK, "
+                         "feedback, safe stop).")
       .def(py::init<const std::string&, const std::vector<CircleObstacle<double>>&,
                     const std::optional<WalkingSettings<double>>&, int, int>(),
            py::arg("robot") = "walkgen_humanoid",
@@ -250,10 +277,8 @@ void bind_simulation(py::module_& m) {
       .def("set_command", &Simulation::set_command, py::arg("vx"), py::arg("vy") = 0.0,
            py::arg("wz") = 0.0, "Velocity command; 'accepted' or 'clamped'.")
       .def("request_stop", &Simulation::request_stop, "Finishes the step and stands on both feet.")
-      .def_property_readonly("mode", [](const Simulation& s) { return s.loop().mode(); })
-      .def(
-          "state", [](const Simulation& s) { return s.loop().mpc().state(); },
-          "The generator's state (a copy).")
+      .def_property_readonly("mode", &Simulation::mode)
+      .def("state", &Simulation::state, "The generator's state (a copy).")
       .def("samples", &Simulation::samples,
            "The last tick's samples: time, com_plan, zmp_plan, zmp_measured, zmp_valid, "
            "com_measured, base_height, sensors_ok.")
