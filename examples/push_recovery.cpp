@@ -1,15 +1,19 @@
 // Push recovery (issue 24 item 6): how hard a kick the walking robot survives, by direction and
-// gait phase. The closed loop (walkgen::SimLoop: NMPC, interpolation, IK, MuJoCo) walks forward
-// at 0.03 m/s; a force on the base for 0.1 s changes the robot's momentum by M Δv (M its whole
+// gait phase. The closed loop of a robot (walkgen's humanoid, the Unitree G1, any described robot:
+// NMPC, interpolation, IK, MuJoCo) walks forward at --speed (0.03 m/s); a force on the base for
+// 0.1 s changes the robot's momentum by M Δv (M its whole
 // mass, so that the CoM's velocity changes by Δv); the walk goes on for 4 s after the push.
 // Survived: the loop reports no fall (the IMU's tilt, the base height) and the robot stands or
 // walks at the end (a safe stop for QP failures counts as survived: the robot is up).
 //
-//   push_recovery [--robot NAME] [--out DIR] [--max-dv V] [--dv-step V] [--directions LIST]
+//   push_recovery [--robot R] [--speed V] [--out DIR] [--max-dv V] [--dv-step V] [--directions
+//   LIST]
 //                 [--phases LIST] [--require-survival V] [--terrains LIST] [--distance D]
 //                 [--max-offset V] [--feedback SOURCE] [--position-gain G]
 //                 [--velocity-gain G] [--smooth-feedback] [--no-plot]
-//     --robot NAME          walkgen_humanoid (the G1 does not walk yet: issue 23)
+//     --robot R             walkgen_humanoid (default) or unitree_g1 (models/R/robot.yaml), or the
+//                           path of a robot description file (docs/robots.md)
+//     --speed V             the walk's forward command [m/s] (default 0.03)
 //     --out DIR             output folder, created if missing (default: .)
 //     --max-dv V            the largest velocity change [m/s] (default 0.6)
 //     --dv-step V           the sweep's step [m/s] (default 0.05)
@@ -23,9 +27,10 @@
 //     --distance D          how far each terrain walk goes [m] (default 2)
 //     --max-offset V        exit 1 unless every slope walk got its distance and ended within V m
 //                           of the line it started on (for tests)
-//     --feedback SOURCE     the CoM fed back to the NMPC: kinematics (default; the measured
-//                           joints from the planned support sole) or estimator (BaseEstimator's
-//                           position and velocity)
+//     --feedback SOURCE     the CoM fed back to the NMPC: kinematics (the measured joints from
+//                           the planned support sole), estimator (BaseEstimator's position and
+//                           velocity) or none; default: the description's (balance.nmpc_feedback:
+//                           kinematics for walkgen's humanoid, none for the G1)
 //     --position-gain G     estimator feedback: fraction of the CoM position error fed back
 //                           (default 0.3, WalkingLoopSettings::estimated_position_gain)
 //     --velocity-gain G     estimator feedback: fraction of the CoM velocity error (default 0.3)
@@ -49,23 +54,49 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/cli.hpp"
 #include "walkgen/core/atomic_file.hpp"
 #include "walkgen/simulation/simulated_tasks.hpp"
+#include "walkgen/yaml/robot_description_loader.hpp"
 
 namespace {
 
 constexpr double kPushDuration = 0.1;  ///< [s] the issue's kick: a velocity change over 0.1 s
 constexpr double kAfter = 4.0;         ///< [s] walked after the push
-const Eigen::Vector3d kCommand(0.03, 0.0, 0.0);  ///< forward [m/s], sideways, yaw rate
 
-const walkgen::KinematicTree<double>& tree() {
-  static const walkgen::KinematicTree<double> t = walkgen::humanoid_tree();
-  return t;
+/// The robot and how it walks: its description, the loop's settings and the forward command.
+struct Setup {
+  walkgen::RobotDescription robot;
+  walkgen::WalkingLoopSettings loop;
+  Eigen::Vector3d command{0.03, 0.0, 0.0};  ///< forward [m/s], sideways, yaw rate
+};
+
+/// Builds `setup`'s robot in MuJoCo from `ms` (mujoco_robot_settings() of its description, with
+/// a push, a slope or objects added), its IK and closed loop (the plan's frame MuJoCo's world),
+/// starts the walk with the command and returns body(robot, loop); when the walk does not start,
+/// on_failure(message).
+template <typename Body, typename OnFailure>
+auto walk_with(const Setup& setup, const walkgen::MujocoRobotSettings& ms,
+               const std::function<void(walkgen::MujocoRobot&)>& before, Body&& body,
+               OnFailure&& on_failure) {
+  walkgen::MujocoRobot robot(ms);
+  if (before) before(robot);
+  const walkgen::WalkingSettings<double> walking =
+      walkgen::settings_where_standing(setup.robot.walking, robot);
+  return walkgen::with_robot_ik(setup.robot, [&](auto& ik) {
+    walkgen::WalkingLoop<16, std::decay_t<decltype(ik)>> loop(walking, robot, ik, setup.loop);
+    if (loop.start().status != walkgen::LoopStatus::ok ||
+        loop.set_command(setup.command) != walkgen::CommandStatus::accepted) {
+      return on_failure(loop.last_tick().message);
+    }
+    return body(robot, loop);
+  });
 }
 
 /// When each phase's push starts [s], from a walk without pushes: in the second step's single
@@ -75,70 +106,71 @@ struct PhaseTimes {
   std::string error;  // empty when found
 };
 
-PhaseTimes phase_times(const walkgen::WalkingLoopSettings& settings) {
-  walkgen::MujocoRobot robot;
-  walkgen::HumanoidIk ik(tree());
-  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik, settings);
-  PhaseTimes p;
-  if (loop.start().status != walkgen::LoopStatus::ok ||
-      loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
-    p.error = "the unpushed walk did not start: " + loop.last_tick().message;
-    return p;
-  }
-  // Intervals of single support (ss) and double support (ds), in order.
-  std::vector<std::pair<bool, std::pair<double, double>>> intervals;  // (double support, [t0, t1])
-  for (int k = 0; k < 30 && intervals.size() < 6; ++k) {
-    if (loop.tick().status != walkgen::LoopStatus::ok) {
-      p.error = "the unpushed walk failed: " + loop.last_tick().message;
-      return p;
-    }
-    for (const auto& s : loop.samples()) {
-      if (intervals.empty() || intervals.back().first != s.plan.double_support) {
-        intervals.push_back({s.plan.double_support, {s.plan.time, s.plan.time}});
-      }
-      intervals.back().second.second = s.plan.time;
-    }
-  }
-  // The second complete single support and the double support after it.
-  int singles = 0;
-  for (std::size_t i = 1; i + 2 < intervals.size(); ++i) {  // [0] may be cut by the start
-    if (intervals[i].first || ++singles < 2) continue;
-    const auto [s0, s1] = intervals[i].second;
-    const auto [d0, d1] = intervals[i + 1].second;
-    p.start["ss_start"] = s0 + 0.05;
-    p.start["ss_middle"] = 0.5 * (s0 + s1) - 0.5 * kPushDuration;
-    p.start["ss_end"] = s1 - kPushDuration - 0.05;
-    p.start["ds"] = 0.5 * (d0 + d1) - 0.5 * kPushDuration;
-    return p;
-  }
-  p.error = "no complete single support in the unpushed walk";
-  return p;
+PhaseTimes phase_times(const Setup& setup) {
+  return walk_with(
+      setup, walkgen::mujoco_robot_settings(setup.robot), nullptr,
+      [](walkgen::MujocoRobot&, auto& loop) {
+        PhaseTimes p;
+        // Intervals of single support (ss) and double support (ds), in order.
+        std::vector<std::pair<bool, std::pair<double, double>>> intervals;  // (ds, [t0, t1])
+        for (int k = 0; k < 240 && intervals.size() < 6; ++k) {
+          if (loop.tick().status != walkgen::LoopStatus::ok) {
+            p.error = "the unpushed walk failed: " + loop.last_tick().message;
+            return p;
+          }
+          for (const auto& s : loop.samples()) {
+            if (intervals.empty() || intervals.back().first != s.plan.double_support) {
+              intervals.push_back({s.plan.double_support, {s.plan.time, s.plan.time}});
+            }
+            intervals.back().second.second = s.plan.time;
+          }
+        }
+        // The second complete single support and the double support after it.
+        int singles = 0;
+        for (std::size_t i = 1; i + 2 < intervals.size(); ++i) {  // [0] may be cut by the start
+          if (intervals[i].first || ++singles < 2) continue;
+          const auto [s0, s1] = intervals[i].second;
+          const auto [d0, d1] = intervals[i + 1].second;
+          p.start["ss_start"] = s0 + 0.05;
+          p.start["ss_middle"] = 0.5 * (s0 + s1) - 0.5 * kPushDuration;
+          p.start["ss_end"] = s1 - kPushDuration - 0.05;
+          p.start["ds"] = 0.5 * (d0 + d1) - 0.5 * kPushDuration;
+          return p;
+        }
+        p.error = "no complete single support in the unpushed walk";
+        return p;
+      },
+      [](const std::string& message) {
+        PhaseTimes p;
+        p.error = "the unpushed walk did not start: " + message;
+        return p;
+      });
 }
 
 /// One kick: true when the robot did not fall.
-bool survives(const walkgen::WalkingLoopSettings& settings, const Eigen::Vector3d& force, double at,
-              std::string& how) {
-  walkgen::MujocoRobot robot;
-  robot.push(force, at, kPushDuration);
-  walkgen::HumanoidIk ik(tree());
-  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik, settings);
-  if (loop.start().status != walkgen::LoopStatus::ok ||
-      loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
-    how = "did not start: " + loop.last_tick().message;
-    return false;
-  }
-  while (robot.output().time < at + kAfter) {
-    const walkgen::LoopTick& t = loop.tick();
-    if (t.status == walkgen::LoopStatus::fallen || t.status == walkgen::LoopStatus::diverged) {
-      how = t.message;
-      return false;
-    }
-    if (t.mode == walkgen::LoopMode::fault) {  // held: survived if it stays up
-      how = t.message;
-    }
-  }
-  if (how.empty()) how = to_string(loop.mode());
-  return robot.output().status == walkgen::RobotStatus::ok;
+bool survives(const Setup& setup, const Eigen::Vector3d& force, double at, std::string& how) {
+  return walk_with(
+      setup, walkgen::mujoco_robot_settings(setup.robot),
+      [&](walkgen::MujocoRobot& robot) { robot.push(force, at, kPushDuration); },
+      [&](walkgen::MujocoRobot& robot, auto& loop) {
+        while (robot.output().time < at + kAfter) {
+          const walkgen::LoopTick& t = loop.tick();
+          if (t.status == walkgen::LoopStatus::fallen ||
+              t.status == walkgen::LoopStatus::diverged) {
+            how = t.message;
+            return false;
+          }
+          if (t.mode == walkgen::LoopMode::fault) {  // held: survived if it stays up
+            how = t.message;
+          }
+        }
+        if (how.empty()) how = to_string(loop.mode());
+        return robot.output().status == walkgen::RobotStatus::ok;
+      },
+      [&](const std::string& message) {
+        how = "did not start: " + message;
+        return false;
+      });
 }
 
 Eigen::Vector3d direction_vector(const std::string& d) {
@@ -166,11 +198,10 @@ struct TerrainWalk {
   std::string how;
 };
 
-/// Walks kCommand straight until the base is `distance` ahead, the robot falls or twice the
-/// time the distance needs has passed.
-TerrainWalk walk_on(const walkgen::WalkingLoopSettings& settings, const std::string& terrain,
-                    double distance) {
-  walkgen::MujocoRobotSettings ms;
+/// Walks the setup's command straight until the base is `distance` ahead, the robot falls or twice
+/// the time the distance needs has passed.
+TerrainWalk walk_on(const Setup& setup, const std::string& terrain, double distance) {
+  walkgen::MujocoRobotSettings ms = walkgen::mujoco_robot_settings(setup.robot);
   if (terrain == "slope_up") ms.slope.x() = kSlope;
   if (terrain == "slope_down") ms.slope.x() = -kSlope;
   if (terrain == "slope_left") ms.slope.y() = kSlope;
@@ -183,49 +214,51 @@ TerrainWalk walk_on(const walkgen::WalkingLoopSettings& settings, const std::str
     box.rgb = Eigen::Vector3d(0.6, 0.6, 0.6);
     ms.objects.push_back(box);
   }
-  walkgen::MujocoRobot robot(ms);
-  walkgen::HumanoidIk ik(tree());
-  walkgen::SimLoop loop(walkgen::heicub_settings(), robot, ik, settings);
-  const int base = mj_name2id(robot.model(), mjOBJ_BODY, ms.base_body.c_str());
-  const auto base_xy = [&] {
-    return Eigen::Vector2d(robot.data()->xpos[3 * base], robot.data()->xpos[3 * base + 1]);
-  };
-  TerrainWalk w;
-  if (loop.start().status != walkgen::LoopStatus::ok ||
-      loop.set_command(kCommand) != walkgen::CommandStatus::accepted) {
-    w.how = "did not start: " + loop.last_tick().message;
-    return w;
-  }
-  const Eigen::Vector2d start = base_xy();
-  // The base sways from foot to foot: the line is that of its mean over a gait cycle (two
-  // steps), the first one walked against the last.
-  const auto& s = loop.mpc().settings();
-  const std::size_t cycle = std::size_t(2 * s.samples_per_step());
-  std::vector<double> sway;
-  const double limit = robot.output().time + 2.0 * distance / kCommand.x();
-  while (base_xy().x() - start.x() < distance && robot.output().time < limit) {
-    const walkgen::LoopTick& t = loop.tick();
-    if (t.status == walkgen::LoopStatus::fallen || t.status == walkgen::LoopStatus::diverged ||
-        t.mode == walkgen::LoopMode::fault || t.mode == walkgen::LoopMode::stopped) {
-      w.how = t.message;
-      break;
-    }
-    sway.push_back(base_xy().y());
-  }
-  const auto mean = [&](std::size_t first) {
-    double sum = 0.0;
-    for (std::size_t i = first; i < first + cycle; ++i) sum += sway[i];
-    return sum / double(cycle);
-  };
-  const Eigen::Vector2d end = base_xy();
-  w.distance = end.x() - start.x();
-  w.offset = sway.size() >= 2 * cycle ? std::abs(mean(sway.size() - cycle) - mean(0))
-                                      : std::abs(end.y() - start.y());
-  w.yaw = walkgen::yaw_of(robot.output().imu.orientation_W_I.toRotationMatrix());
-  w.time = robot.output().time;
-  w.survived = robot.output().status == walkgen::RobotStatus::ok && w.how.empty();
-  if (w.how.empty()) w.how = w.distance >= distance ? "reached" : "out of time";
-  return w;
+  return walk_with(
+      setup, ms, nullptr,
+      [&](walkgen::MujocoRobot& robot, auto& loop) {
+        const int base = mj_name2id(robot.model(), mjOBJ_BODY, ms.base_body.c_str());
+        const auto base_xy = [&] {
+          return Eigen::Vector2d(robot.data()->xpos[3 * base], robot.data()->xpos[3 * base + 1]);
+        };
+        TerrainWalk w;
+        const Eigen::Vector2d start = base_xy();
+        // The base sways from foot to foot: the line is that of its mean over a gait cycle (two
+        // steps), the first one walked against the last.
+        const auto& s = loop.mpc().settings();
+        const std::size_t cycle = std::size_t(2 * s.samples_per_step());
+        std::vector<double> sway;
+        const double limit = robot.output().time + 2.0 * distance / setup.command.x();
+        while (base_xy().x() - start.x() < distance && robot.output().time < limit) {
+          const walkgen::LoopTick& t = loop.tick();
+          if (t.status == walkgen::LoopStatus::fallen ||
+              t.status == walkgen::LoopStatus::diverged || t.mode == walkgen::LoopMode::fault ||
+              t.mode == walkgen::LoopMode::stopped) {
+            w.how = t.message;
+            break;
+          }
+          sway.push_back(base_xy().y());
+        }
+        const auto mean = [&](std::size_t first) {
+          double sum = 0.0;
+          for (std::size_t i = first; i < first + cycle; ++i) sum += sway[i];
+          return sum / double(cycle);
+        };
+        const Eigen::Vector2d end = base_xy();
+        w.distance = end.x() - start.x();
+        w.offset = sway.size() >= 2 * cycle ? std::abs(mean(sway.size() - cycle) - mean(0))
+                                            : std::abs(end.y() - start.y());
+        w.yaw = walkgen::yaw_of(robot.output().imu.orientation_W_I.toRotationMatrix());
+        w.time = robot.output().time;
+        w.survived = robot.output().status == walkgen::RobotStatus::ok && w.how.empty();
+        if (w.how.empty()) w.how = w.distance >= distance ? "reached" : "out of time";
+        return w;
+      },
+      [](const std::string& message) {
+        TerrainWalk w;
+        w.how = "did not start: " + message;
+        return w;
+      });
 }
 
 /// Writes `header` and the rows `body` streams to `path` atomically; false (and a message on
@@ -260,17 +293,20 @@ int main(int argc, char** argv) {
   std::vector<std::string> terrains = {"flat", "slope_up", "slope_down", "slope_left",
                                        "slope_right"};
   double distance = 2.0, max_offset = 0.0;
-  std::string feedback = "kinematics";
-  walkgen::WalkingLoopSettings settings =
-      walkgen::loop_settings(walkgen::walkgen_humanoid_description());
+  std::string feedback;  // default: the description's
+  double speed = 0.03;
+  std::optional<double> position_gain, velocity_gain;
+  bool smooth_feedback = false;
   CLI::App app{
       "Kicks the walking robot in MuJoCo (a force on the base for 0.1 s) in four directions at "
       "four gait phases and sweeps the velocity change: push_summary.csv and a survival map",
       "push_recovery"};
   walkgen_examples::cli_defaults(app);
   app.add_option("--robot", robot_name,
-                 "the robot: walkgen_humanoid (the G1 does not walk yet, issue 23)")
-      ->check(CLI::IsMember({"walkgen_humanoid"}));
+                 "the robot: walkgen_humanoid or unitree_g1 (models/NAME/robot.yaml), or the "
+                 "path of a robot description file (docs/robots.md)");
+  app.add_option("--speed", speed, "the walk's forward command [m/s], within the robot's limit")
+      ->check(CLI::Range(0.0, 5.0) & walkgen_examples::positive);
   app.add_option("--out", out_dir, "output folder, created if missing");
   app.add_option("--max-dv", max_dv, "the largest velocity change of the sweep [m/s]")
       ->check(CLI::Range(0.0, 5.0) & walkgen_examples::positive);
@@ -299,15 +335,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10.0));
   app.add_option("--feedback", feedback,
                  "the CoM fed back to the NMPC: kinematics (the measured joints from the planned "
-                 "support sole) or estimator (position and velocity of the state estimator)")
-      ->check(CLI::IsMember({"kinematics", "estimator"}));
-  app.add_option("--position-gain", settings.estimated_position_gain,
-                 "estimator feedback: fraction of the CoM position error fed back")
+                 "support sole), estimator (position and velocity of the state estimator) or "
+                 "none; default: the robot description's (balance.nmpc_feedback)")
+      ->check(CLI::IsMember({"kinematics", "estimator", "none"}))
+      ->default_str("");
+  app.add_option("--position-gain", position_gain,
+                 "estimator feedback: fraction of the CoM position error fed back (default 0.3)")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--velocity-gain", settings.estimated_velocity_gain,
-                 "estimator feedback: fraction of the CoM velocity error fed back")
+  app.add_option("--velocity-gain", velocity_gain,
+                 "estimator feedback: fraction of the CoM velocity error fed back (default 0.3)")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_flag("--smooth-feedback", settings.smooth_feedback,
+  app.add_flag("--smooth-feedback", smooth_feedback,
                "blend the executed CoM into each restarted plan over the tick instead of jumping "
                "(WalkingLoopSettings::smooth_feedback)");
   app.add_flag("--no-plot", no_plot,
@@ -321,20 +359,52 @@ int main(int argc, char** argv) {
                  ec.message().c_str());
     return 1;
   }
-  settings.feedback = feedback == "estimator" ? walkgen::FeedbackSource::estimator
-                                              : walkgen::FeedbackSource::kinematics;
-  const PhaseTimes times = phase_times(settings);
+  Setup setup;
+  try {
+    setup.robot = walkgen::find_robot_description(robot_name);
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "push_recovery: --robot: %s\n", e.what());
+    return 2;
+  }
+  if (speed > setup.robot.walking.max_command.x()) {
+    std::fprintf(stderr, "push_recovery: --speed %g m/s is beyond %s's limit of %g m/s\n", speed,
+                 setup.robot.name.c_str(), setup.robot.walking.max_command.x());
+    return 2;
+  }
+  setup.command.x() = speed;
+  setup.loop = walkgen::loop_settings(setup.robot);
+  if (feedback.empty()) {
+    feedback = !setup.loop.com_feedback                                    ? "none"
+               : setup.loop.feedback == walkgen::FeedbackSource::estimator ? "estimator"
+                                                                           : "kinematics";
+  }
+  setup.loop.com_feedback = feedback != "none";
+  if (feedback != "none") {
+    setup.loop.feedback = feedback == "estimator" ? walkgen::FeedbackSource::estimator
+                                                  : walkgen::FeedbackSource::kinematics;
+  }
+  if (position_gain) setup.loop.estimated_position_gain = *position_gain;
+  if (velocity_gain) setup.loop.estimated_velocity_gain = *velocity_gain;
+  if (smooth_feedback) setup.loop.smooth_feedback = true;
+  double mass = 0.0;
+  PhaseTimes times;
+  try {
+    times = phase_times(setup);
+    walkgen::MujocoRobot probe(walkgen::mujoco_robot_settings(setup.robot));
+    mass = mj_getTotalmass(probe.model());
+  } catch (const walkgen::invalid_argument& e) {
+    std::fprintf(stderr, "push_recovery: --robot %s: %s\n", robot_name.c_str(), e.what());
+    return 2;
+  }
   if (!times.error.empty()) {
     std::fprintf(stderr, "push_recovery: %s\n", times.error.c_str());
     return 1;
   }
-  walkgen::MujocoRobot probe;
-  const double mass = mj_getTotalmass(probe.model());
   const int steps = int(std::floor(max_dv / dv_step + 1e-9));
   std::printf(
       "push_recovery: %s, %.2f kg, walking %.2f m/s, %s feedback; %zu directions x %zu phases "
       "x %d kicks of %g..%g m/s over %g s\n",
-      robot_name.c_str(), mass, kCommand.x(), feedback.c_str(), directions.size(), phases.size(),
+      setup.robot.name.c_str(), mass, speed, feedback.c_str(), directions.size(), phases.size(),
       steps, dv_step, steps * dv_step, kPushDuration);
   struct Row {
     std::string direction, phase;
@@ -350,7 +420,7 @@ int main(int argc, char** argv) {
       for (int i = 1; i <= steps; ++i) {
         const double dv = i * dv_step;
         std::string how;
-        const bool ok = survives(settings, mass * dv / kPushDuration * direction_vector(d),
+        const bool ok = survives(setup, mass * dv / kPushDuration * direction_vector(d),
                                  times.start.at(ph), how);
         rows.push_back({d, ph, dv, ok});
         std::printf("  %-8s %-9s dv %.2f m/s: %s (%s)\n", d.c_str(), ph.c_str(), dv,
@@ -370,7 +440,7 @@ int main(int argc, char** argv) {
   std::vector<TerrainRow> walks;
   bool offset_held = true;
   for (const std::string& terrain : terrains) {
-    const TerrainWalk w = walk_on(settings, terrain, distance);
+    const TerrainWalk w = walk_on(setup, terrain, distance);
     walks.push_back({terrain, w});
     std::printf(
         "terrain %-11s: %s, %.3f m ahead, %.1f mm off the line, yaw %.3f rad, %.1f s (%s)\n",
@@ -388,13 +458,14 @@ int main(int argc, char** argv) {
       write_csv(terrain_csv, "robot,terrain,survived,distance,offset,yaw",
                 [&](std::ostream& out) {
                   for (const TerrainRow& r : walks) {
-                    out << robot_name << ',' << r.terrain << ',' << (r.walk.survived ? 1 : 0) << ','
-                        << r.walk.distance << ',' << r.walk.offset << ',' << r.walk.yaw << '\n';
+                    out << setup.robot.name << ',' << r.terrain << ',' << (r.walk.survived ? 1 : 0)
+                        << ',' << r.walk.distance << ',' << r.walk.offset << ',' << r.walk.yaw
+                        << '\n';
                   }
                 }) &&
       write_csv(csv, "robot,direction,phase,delta_v,survived", [&](std::ostream& out) {
         for (const Row& r : rows) {
-          out << robot_name << ',' << r.direction << ',' << r.phase << ',' << r.dv << ','
+          out << setup.robot.name << ',' << r.direction << ',' << r.phase << ',' << r.dv << ','
               << (r.survived ? 1 : 0) << '\n';
         }
       });
