@@ -21,6 +21,9 @@ class EditedRobot : public walkgen::Robot {
     refresh();
     return s;
   }
+  void set_balance_reference(const walkgen::BalanceReference& reference) override {
+    inner_.set_balance_reference(reference);  // a torque-driven robot's balance feed-forward
+  }
   const walkgen::RobotOutput& output() const override { return out_; }
   const walkgen::StereoImages& render_cameras() override { return inner_.render_cameras(); }
   void reset() override {
