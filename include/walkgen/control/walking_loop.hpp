@@ -756,20 +756,62 @@ class WalkingLoop {
 
   /// Stopping after the step: from `s` (both feet down) the CoM moves to the middle of the
   /// soles along 5th-order polynomials from its state (position, velocity, acceleration) to
-  /// rest, in transfer_time; the feet stay.
+  /// rest, in transfer_time; the feet stay. A CoM still swinging fast toward a sole (the G1
+  /// stopping from a walk: its CoM sways at 0.3 m/s) overshoots that sole on the way back when
+  /// the move takes the whole transfer_time: the move takes transfer_time · k/8 (k = 8 … 1),
+  /// the longest along which the CoM and its ZMP go least beyond the soles' centres (across the
+  /// line joining them: beyond half a foot length); a shorter move must go at least 1 mm less
+  /// beyond them to be taken.
   void begin_centring(const TrajectorySample<double>& s) {
     centring_ = true;
     centre_time_ = 0.0;
     centre_from_ = at_rest(s);
     centre_from_.com_x = s.com_x;
     centre_from_.com_y = s.com_y;
-    const double duration = std::max(loop_.transfer_time, interp_.command_period());
     const auto& l = centre_from_.left.motion;
     const auto& r = centre_from_.right.motion;
-    centre_x_ = quintic(duration, Sample3<double>{s.com_x[0], s.com_x[1], s.com_x[2]},
-                        Sample3<double>{(l.x.position + r.x.position) / 2.0, 0.0, 0.0});
-    centre_y_ = quintic(duration, Sample3<double>{s.com_y[0], s.com_y[1], s.com_y[2]},
-                        Sample3<double>{(l.y.position + r.y.position) / 2.0, 0.0, 0.0});
+    const Eigen::Vector2d left(l.x.position, l.y.position), right(r.x.position, r.y.position);
+    const Eigen::Vector2d middle = (left + right) / 2.0;
+    const double h_g = s.com_z / mpc_.settings().gravity;
+    const double half_length = mpc_.settings().foot_length / 2.0;
+    // How far p lies beyond the soles' centres [m] (0 between them).
+    const auto beyond = [&](const Eigen::Vector2d& p) {
+      const Eigen::Vector2d across = left - right;
+      const double length = across.norm();
+      if (!(length > 1e-9)) return std::max((p - middle).norm() - half_length, 0.0);
+      const Eigen::Vector2d d = p - right, unit = across / length;
+      const double along = d.dot(unit);
+      const double off = std::abs(d.x() * unit.y() - d.y() * unit.x());
+      return std::max({-along, along - length, 0.0}) + std::max(off - half_length, 0.0);
+    };
+    const auto move = [&](double duration) {
+      centre_x_ = quintic(duration, Sample3<double>{s.com_x[0], s.com_x[1], s.com_x[2]},
+                          Sample3<double>{middle.x(), 0.0, 0.0});
+      centre_y_ = quintic(duration, Sample3<double>{s.com_y[0], s.com_y[1], s.com_y[2]},
+                          Sample3<double>{middle.y(), 0.0, 0.0});
+      double worst = 0.0;
+      for (int i = 0; i <= 40; ++i) {
+        const Sample3<double> x = centre_x_.evaluate(duration * double(i) / 40.0);
+        const Sample3<double> y = centre_y_.evaluate(duration * double(i) / 40.0);
+        worst = std::max({worst, beyond({x.position, y.position}),
+                          beyond({x.position - h_g * x.acceleration,
+                                  y.position - h_g * y.acceleration})});
+      }
+      return worst;
+    };
+    const auto duration = [&](int k) {
+      return std::max(loop_.transfer_time * double(k) / 8.0, interp_.command_period());
+    };
+    int best = 8;
+    double least = move(duration(8));
+    for (int k = 7; k >= 1; --k) {
+      const double worst = move(duration(k));
+      if (worst < least - 1e-3) {
+        least = worst;
+        best = k;
+      }
+    }
+    (void)move(duration(best));
   }
 
   /// `s` standing still: feet on the ground at rest, CoM and yaw without motion, ZMP under the
