@@ -1,10 +1,10 @@
 // A browser dashboard and teleoperation for a simulated robot (docs/dashboard.md): the closed
 // loop of thesis figure 6.1 walks walkgen's humanoid, the Unitree G1 or any described robot in
-// MuJoCo at real time (or a chosen factor) in this program's main thread; an HTTP server (cpp-httplib, examples/dashboard/
-// server.hpp) serves a single page (examples/dashboard/web/, embedded in the program, no CDN)
-// that draws the feet, the planned footsteps, CoM, ZMP, support polygon, obstacles and path,
-// shows the chest camera's RGB and depth, plots ZMP error, speed and compute time, and steers
-// the robot with the keyboard or buttons.
+// MuJoCo at real time (or a chosen factor) in this program's main thread; an HTTP server
+// (cpp-httplib, examples/dashboard/ server.hpp) serves a single page (examples/dashboard/web/,
+// embedded in the program, no CDN) that draws the feet, the planned footsteps, CoM, ZMP, support
+// polygon, obstacles and path, shows the chest camera's RGB and depth, plots ZMP error, speed and
+// compute time, and steers the robot with the keyboard or buttons.
 //
 //   walkgen_dashboard [--robot NAME|PATH] [--port P] [--bind ADDRESS] [--scene TASK [--seed S]]
 //                     [--speed F] [--max-time T] [--camera-period S] [--training DIR]

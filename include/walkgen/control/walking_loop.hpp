@@ -793,9 +793,9 @@ class WalkingLoop {
       for (int i = 0; i <= 40; ++i) {
         const Sample3<double> x = centre_x_.evaluate(duration * double(i) / 40.0);
         const Sample3<double> y = centre_y_.evaluate(duration * double(i) / 40.0);
-        worst = std::max({worst, beyond({x.position, y.position}),
-                          beyond({x.position - h_g * x.acceleration,
-                                  y.position - h_g * y.acceleration})});
+        worst = std::max(
+            {worst, beyond({x.position, y.position}),
+             beyond({x.position - h_g * x.acceleration, y.position - h_g * y.acceleration})});
       }
       return worst;
     };

@@ -334,9 +334,8 @@ TaskResult run_task_with(const SimTask& task, const RobotDescription& descriptio
 ///   the description.
 inline TaskResult run_task(const SimTask& task, const RobotDescription& robot, double settle = 2.0,
                            const TaskTickCallback& on_tick = nullptr) {
-  return with_robot_ik(robot, [&](auto& ik) {
-    return detail::run_task_with(task, robot, ik, settle, on_tick);
-  });
+  return with_robot_ik(
+      robot, [&](auto& ik) { return detail::run_task_with(task, robot, ik, settle, on_tick); });
 }
 
 /// run_task() with walkgen's humanoid.
