@@ -6,9 +6,9 @@
 // Survived: the loop reports no fall (the IMU's tilt, the base height) and the robot stands or
 // walks at the end (a safe stop for QP failures counts as survived: the robot is up).
 //
-//   push_recovery [--robot R] [--speed V] [--out DIR] [--max-dv V] [--dv-step V] [--directions
-//   LIST]
-//                 [--phases LIST] [--require-survival V] [--terrains LIST] [--distance D]
+//   push_recovery [--robot R] [--speed V] [--out DIR] [--max-dv V] [--dv-step V]
+//                 [--directions LIST] [--phases LIST] [--require-survival V]
+//                 [--terrains LIST] [--distance D]
 //                 [--max-offset V] [--feedback SOURCE] [--position-gain G]
 //                 [--velocity-gain G] [--smooth-feedback] [--no-plot]
 //     --robot R             walkgen_humanoid (default) or unitree_g1 (models/R/robot.yaml), or the

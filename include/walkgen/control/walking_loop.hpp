@@ -774,12 +774,13 @@ class WalkingLoop {
     const Eigen::Vector2d middle = (left + right) / 2.0;
     const double h_g = s.com_z / mpc_.settings().gravity;
     const double half_length = mpc_.settings().foot_length / 2.0;
+    const double length = (left - right).norm();
+    const Eigen::Vector2d unit =
+        length > 1e-9 ? Eigen::Vector2d((left - right) / length) : Eigen::Vector2d::UnitY();
     // How far p lies beyond the soles' centres [m] (0 between them).
     const auto beyond = [&](const Eigen::Vector2d& p) {
-      const Eigen::Vector2d across = left - right;
-      const double length = across.norm();
       if (!(length > 1e-9)) return std::max((p - middle).norm() - half_length, 0.0);
-      const Eigen::Vector2d d = p - right, unit = across / length;
+      const Eigen::Vector2d d = p - right;
       const double along = d.dot(unit);
       const double off = std::abs(d.x() * unit.y() - d.y() * unit.x());
       return std::max({-along, along - length, 0.0}) + std::max(off - half_length, 0.0);
